@@ -1,0 +1,71 @@
+#pragma once
+// One EtherCAT Slave Controller (ET1100/ET1810-class): 64 KiB address space, registers
+// 0x0000-0x0FFF, process RAM above, datagram engine, FMMUs, SyncManagers, SII EEPROM, DC, watchdogs.
+//
+// Two sides, as on silicon:
+//  - ECAT side: process_frame() is called by the segment as a frame passes port 0 (forward).
+//    It executes every datagram addressed to this ESC in place and bumps working counters.
+//  - PDI side: pdi_read()/pdi_write() are the microcontroller's view (firmware). PDI accesses have
+//    PDI write permissions and PDI side effects (e.g. reading AL Control clears its event, writing
+//    the last byte of a mailbox SM buffer hands it to the master).
+//
+// Threading: single-threaded by design; the caller (one event loop) owns the ESC. No method
+// allocates after construction.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "common/clock.hpp"
+#include "esc_model/esc_config.hpp"
+#include "esc_model/frame_timing.hpp"
+
+namespace vdrive::esc {
+
+// Link state of a port as seen by the ESC (drives DL status 0x0110 and loop control).
+struct PortLinks {
+  bool port[4] = {false, false, false, false};
+};
+
+class Esc {
+public:
+  Esc(const EscConfig& config, const Clock& clock);
+  ~Esc();
+  Esc(const Esc&) = delete;
+  Esc& operator=(const Esc&) = delete;
+
+  // ---- ECAT side --------------------------------------------------------------------------
+  // `pdu` is the EtherCAT frame payload: the 2-byte EtherCAT header followed by the datagrams.
+  // Returns false (and counts an RX error) if the frame is malformed, i.e. a real ESC would have
+  // destroyed it; the segment then drops the frame.
+  bool process_frame(std::span<std::uint8_t> pdu, const FrameTiming& timing);
+
+  // Physical link per port; set by the segment (topology, cable break). Updates DL status.
+  void set_links(const PortLinks& links);
+  // Whether the ESC forwards out of port 1 (open, link up and not closed by DL control 0x0100).
+  bool port_forwards(int port) const;
+
+  // ---- PDI side (firmware) ----------------------------------------------------------------
+  void pdi_read(std::uint16_t address, std::span<std::uint8_t> out);
+  void pdi_write(std::uint16_t address, std::span<const std::uint8_t> in);
+  // AL Event Request (0x0220) masked by AL Event Mask (0x0204): non-zero means "IRQ asserted".
+  std::uint32_t pdi_irq() const;
+
+  // ---- time ---------------------------------------------------------------------------------
+  // Called by the scheduler so the ESC can run time-based behaviour (watchdogs, SYNC0/1).
+  void tick(Nanos now);
+  // Next time tick() must be called (SYNC edge, watchdog expiry), or INT64_MAX.
+  Nanos next_deadline() const;
+
+  // Power-on reset: registers to their reset values, EEPROM reloaded into 0x0012 etc.
+  void reset();
+
+  // Test and tooling access to the raw memory, without side effects.
+  std::uint8_t peek(std::uint16_t address) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vdrive::esc

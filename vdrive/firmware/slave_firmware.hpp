@@ -1,0 +1,34 @@
+#pragma once
+// The firmware of one slave: what the drive's microcontroller runs. It talks to its ESC only
+// through the PDI (pdi_read/pdi_write/pdi_irq), like the real thing.
+//
+// This issue: the EtherCAT state machine (AL control -> AL status / status code) with the
+// product's mailbox SyncManager checks. Later issues add mailbox/CoE, PDO, CiA402.
+#include <cstdint>
+#include <memory>
+
+#include "common/clock.hpp"
+#include "esc_model/esc.hpp"
+#include "vdrive/profile/product_profile.hpp"
+
+namespace vdrive::firmware {
+
+class SlaveFirmware {
+public:
+  SlaveFirmware(const profile::ProductProfile& profile, esc::Esc& esc);
+  ~SlaveFirmware();
+
+  // Power-on: initialise AL status (Init), load what the firmware loads at boot.
+  void power_on(Nanos now);
+  // Service the PDI interrupt (call after each frame when esc.pdi_irq() != 0, and on SYNC).
+  void on_irq(Nanos now);
+  // Periodic work (timeouts, cyclic tasks); call at next_deadline() at the latest.
+  void tick(Nanos now);
+  Nanos next_deadline() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vdrive::firmware
