@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Sets up (Debian packages), builds, and runs the demo: a line of three drives on a veth pair that
+# it creates, scanned and taken up the state machine by the built-in master. Run as root.
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+"$here/tools/setup-debian.sh"
+"$here/tools/build.sh"
+exec "${VDRIVE_BUILD_DIR:-$here/build}/vdrive/vdrive" demo "$@"
