@@ -1,0 +1,110 @@
+#pragma once
+// ecmaster: a small EtherCAT master over a vdrive::link::Link, used by the tests, the demo and
+// the `vdrive-master` tool. It brings a line up the way SOEM's ec_config_init does:
+//
+//   Master m(link);
+//   m.scan();                           // count, reset, address 0x1001.., read SII of every slave
+//   m.slaves()[0].info.name;            // identity, mailbox, SMs, PDOs from the SII
+//   m.request_state(AlState::PreOp);    // configures mailbox SM0/SM1 from the SII first
+//
+// Errors on the wire (no reply after retries) throw MasterError; a slave that refuses a state is
+// not an exception: request_state() returns false and the slave carries its AL status code.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/clock.hpp"
+#include "master/al_state.hpp"
+#include "master/slave_info.hpp"
+#include "master/transport.hpp"
+#include "vdrive/link/link.hpp"
+
+namespace vdrive::master {
+
+class MasterError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+constexpr std::uint16_t kFirstStationAddress = 0x1001;
+
+// One SyncManager's register block (0x0800 + 8*n) as the master writes it.
+struct SmSetting {
+  std::uint16_t start = 0;
+  std::uint16_t length = 0;
+  std::uint8_t control = 0;
+  std::uint8_t activate = 0;     // bit 0: enable
+};
+
+struct Slave {
+  std::uint16_t position = 0;          // 0-based place in the line
+  std::uint16_t station = 0;           // configured station address (0x1001 + position)
+  std::uint8_t esc_type = 0, esc_revision = 0;
+  std::uint16_t esc_build = 0;
+  std::uint8_t fmmu_count = 0, sm_count = 0;
+  std::uint16_t dl_status = 0;
+  SlaveInfo info;                      // from the SII
+  // SM0/SM1 written before Pre-Op (and Boot). Derived from the SII at scan(); callers may change
+  // them before request_state() (e.g. to test a slave's mailbox checks).
+  std::array<SmSetting, 2> mailbox_sm{};
+  AlStatus al;                         // last AL status read
+  AlState state() const { return static_cast<AlState>(al.state); }
+};
+
+struct MasterOptions {
+  TransportOptions transport;
+  Nanos state_timeout = 5'000'000'000;      // per state request (ETG: Init->PreOp up to 5 s)
+  Nanos sii_busy_timeout = 100'000'000;
+  Nanos poll_interval = 1'000'000;          // between AL status polls (only with a real clock)
+};
+
+class Master {
+public:
+  // Real time (MonotonicClock owned by the master).
+  explicit Master(link::Link& link, MasterOptions options = {});
+  // Given clock: VirtualClock in tests, where the link advances time.
+  Master(link::Link& link, const Clock& clock, MasterOptions options = {});
+  ~Master();
+  Master(const Master&) = delete;
+  Master& operator=(const Master&) = delete;
+
+  // Counts the slaves (BRD 0x0000), resets them to a known state (Init, FMMUs/SMs cleared, loops
+  // auto, alias off, EEPROM to ECAT), assigns station addresses 0x1001.. (APWR 0x0010) and checks
+  // them back (FPRD), then reads every SII. Returns the number of slaves. Throws MasterError.
+  std::size_t scan();
+
+  std::vector<Slave>& slaves() { return slaves_; }
+  const std::vector<Slave>& slaves() const { return slaves_; }
+
+  // Takes every slave to `target` (through the states in between, as ETG.1000.6 requires).
+  // Returns true when all reached it; each slave's `al` says where it stands.
+  bool request_state(AlState target);
+  // One slave. Before Pre-Op/Boot from Init, writes SM0/SM1 from `mailbox_sm`.
+  bool request_state(std::size_t slave, AlState target);
+  // Reads AL status (and AL status code) into slaves()[slave].al and returns it.
+  AlStatus read_al_status(std::size_t slave);
+  // Acknowledges an error indication: AL control = current state | 0x10.
+  bool acknowledge_error(std::size_t slave);
+
+  Transport& transport() { return transport_; }
+
+private:
+  bool step_to(Slave& slave, AlState target);
+  void configure_mailbox(Slave& slave);
+  void reset_line();
+  void sleep_poll();
+
+  std::unique_ptr<Clock> own_clock_;
+  const Clock& clock_;
+  MasterOptions options_;
+  Transport transport_;
+  std::vector<Slave> slaves_;
+};
+
+// "0x1001  a6b  ..." style helpers for tools.
+std::string describe(const Slave& slave);
+
+}  // namespace vdrive::master
