@@ -78,6 +78,9 @@ struct ProductProfile {
   MailboxSmRules mailbox_rules;
   std::vector<SyncManagerSpec> sync_managers;  // SII SyncManager category, in SM order
   bool has_bootstrap = false;                  // Boot state supported
+  // Explicit Device ID (ETG.1000.6): AL control bit5 puts the device ID into AL status code 0x0134
+  // and sets AL status bit5. A6B and DS1000A-EC support it, DS5C1 does not.
+  bool explicit_device_id = false;
   AlStatusCodes al_codes;
   // SII General category: CoE details (bit0 SDO, 1 SDO info, 2 PDO assign, 3 PDO config,
   // 4 startup upload, 5 complete access), FoE details, ports.
