@@ -67,6 +67,38 @@ struct AlStatusCodes {
   std::uint16_t bootstrap_not_supported = 0x0013;
   std::uint16_t invalid_mailbox_config = 0x0016;
   std::uint16_t invalid_boot_mailbox_config = 0x0015;
+  // Codes checked at PreOp->SafeOp and in SafeOp/Op (ETG.1000.6 names; products pick their own).
+  std::uint16_t sync_watchdog = 0x001B;               // process-data (SM2) watchdog expired
+  std::uint16_t invalid_output_config = 0x001D;       // SM2
+  std::uint16_t invalid_input_config = 0x001E;        // SM3
+  std::uint16_t invalid_watchdog_config = 0x001F;
+  std::uint16_t invalid_input_mapping = 0x0024;       // TxPDO
+  std::uint16_t invalid_output_mapping = 0x0025;      // RxPDO
+  std::uint16_t sync_mode_not_supported = 0x0028;
+  std::uint16_t sync_error = 0x002C;                  // SYNC0/IRQ missed
+  std::uint16_t no_sync_error = 0x002D;               // sync not locked in time
+  std::uint16_t invalid_dc_sync_config = 0x0030;
+  std::uint16_t pll_error = 0x0032;
+  std::uint16_t invalid_sync_cycle_time = 0x0035;
+  std::uint16_t eeprom_error = 0x0051;                // SII EEPROM/identity mismatch
+};
+
+// One entry of a default PDO mapping (SII TxPDO/RxPDO categories, 16xxh/1Axxh).
+struct PdoEntrySpec {
+  std::uint16_t index = 0;
+  std::uint8_t subindex = 0;
+  std::uint8_t bit_length = 0;
+  std::uint8_t data_type = 0;          // CoE data type code: 0x05 U8, 0x06 U16, 0x07 U32, 0x03 I16...
+  std::string name;
+};
+
+// A PDO of the default mapping: its mapping object and the SyncManager it is assigned to.
+struct PdoSpec {
+  std::uint16_t index = 0;             // 0x1600.. (RxPDO) or 0x1A00.. (TxPDO)
+  std::string name;
+  std::uint8_t sync_manager = 0;       // 2 = outputs, 3 = inputs; 0xFF = not assigned by default
+  bool fixed = false;                  // mapping cannot be changed
+  std::vector<PdoEntrySpec> entries;
 };
 
 struct ProductProfile {
@@ -86,6 +118,9 @@ struct ProductProfile {
   // 4 startup upload, 5 complete access), FoE details, ports.
   std::uint8_t coe_details = 0x0F;
   std::uint8_t foe_details = 0;
+  // Default PDO mappings (factory values), in object order. Empty when the manual gives none.
+  std::vector<PdoSpec> rx_pdos;
+  std::vector<PdoSpec> tx_pdos;
 };
 
 }  // namespace vdrive::profile
