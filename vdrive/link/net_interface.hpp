@@ -1,0 +1,29 @@
+#pragma once
+// Small Linux helpers shared by the real links (RawSocketLink, TapLink): interface lookup and
+// flags through ioctl, errno -> LinkError, and waiting for a readable fd with a timeout.
+#include <cstdint>
+#include <string>
+
+#include "common/clock.hpp"
+#include "vdrive/link/link_error.hpp"
+
+namespace vdrive::link::net {
+
+// Throws LinkError(BadName) unless 1..15 characters without '/' or whitespace (IFNAMSIZ).
+void check_interface_name(const std::string& name);
+// Interface index; throws LinkError(NoInterface, "no interface 'X'").
+int interface_index(const std::string& name);
+// IFF_UP of the interface; throws LinkError like interface_index.
+bool interface_is_up(const std::string& name);
+// Sets IFF_UP; throws LinkError (NotPermitted without CAP_NET_ADMIN).
+void set_interface_up(const std::string& name);
+
+// A LinkError for a failed system call `call` on interface `name` with errno `err`.
+LinkError error_from_errno(const std::string& call, const std::string& name, int err);
+
+// Waits until `fd` is readable or `timeout` elapsed (0 = just look, <0 = forever). Returns true
+// if readable; false on timeout or when a signal interrupted the wait (so callers notice a stop
+// request promptly).
+bool wait_readable(int fd, Nanos timeout);
+
+}  // namespace vdrive::link::net

@@ -1,0 +1,120 @@
+#include "vdrive/link/raw_socket_link.hpp"
+
+#include <arpa/inet.h>
+#include <linux/if_ether.h>
+#include <linux/if_packet.h>
+#include <net/if.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+#include "vdrive/link/net_interface.hpp"
+
+namespace vdrive::link {
+namespace {
+
+constexpr std::size_t kEthHeader = 14;  // destination, source, EtherType
+
+bool is_ethercat(std::span<const std::uint8_t> frame) {
+  return frame.size() >= kEthHeader &&
+         ((static_cast<std::uint16_t>(frame[12]) << 8) | frame[13]) == kEtherTypeEtherCat;
+}
+
+// Monotonic now for timeout bookkeeping inside receive(); a link waits in real time by nature.
+Nanos wall_now() {
+  static const MonotonicClock clock;
+  return clock.now();
+}
+
+}  // namespace
+
+RawSocketLink::RawSocketLink(const std::string& interface_name, Options options)
+    : name_(interface_name) {
+  ifindex_ = net::interface_index(name_);
+  if (!net::interface_is_up(name_)) {
+    throw LinkError(LinkError::Kind::InterfaceDown,
+                    "interface '" + name_ + "' is down (ip link set " + name_ + " up)");
+  }
+
+  fd_ = ::socket(AF_PACKET, SOCK_RAW | SOCK_CLOEXEC, htons(kEtherTypeEtherCat));
+  if (fd_ < 0) throw net::error_from_errno("socket(AF_PACKET)", name_, errno);
+
+  try {
+    sockaddr_ll addr{};
+    addr.sll_family = AF_PACKET;
+    addr.sll_protocol = htons(kEtherTypeEtherCat);
+    addr.sll_ifindex = ifindex_;
+    if (::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) < 0) {
+      throw net::error_from_errno("bind", name_, errno);
+    }
+
+    packet_mreq mreq{};
+    mreq.mr_ifindex = ifindex_;
+    mreq.mr_type = PACKET_MR_PROMISC;
+    if (::setsockopt(fd_, SOL_PACKET, PACKET_ADD_MEMBERSHIP, &mreq, sizeof mreq) < 0) {
+      throw net::error_from_errno("PACKET_ADD_MEMBERSHIP", name_, errno);
+    }
+
+#ifdef PACKET_IGNORE_OUTGOING
+    // Linux >= 4.20: the kernel does not even queue our own sends to us. receive() also checks
+    // the packet type, so older kernels behave the same.
+    int one = 1;
+    (void)::setsockopt(fd_, SOL_PACKET, PACKET_IGNORE_OUTGOING, &one, sizeof one);
+#endif
+    if (options.qdisc_bypass) {
+      int on = 1;
+      // Best effort: an old kernel without it still works, only slower.
+      (void)::setsockopt(fd_, SOL_PACKET, PACKET_QDISC_BYPASS, &on, sizeof on);
+    }
+  } catch (...) {
+    ::close(fd_);
+    throw;
+  }
+}
+
+RawSocketLink::~RawSocketLink() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
+  const Nanos deadline = timeout > 0 ? wall_now() + timeout : 0;
+  for (;;) {
+    sockaddr_ll from{};
+    socklen_t from_len = sizeof from;
+    // MSG_TRUNC: the return value is the frame's real length, so an oversize frame is detected
+    // and discarded rather than passed on cut short.
+    ssize_t n = ::recvfrom(fd_, buf.data(), buf.size(), MSG_TRUNC | MSG_DONTWAIT,
+                           reinterpret_cast<sockaddr*>(&from), &from_len);
+    if (n >= 0) {
+      if (from.sll_pkttype == PACKET_OUTGOING) continue;
+      const auto len = static_cast<std::size_t>(n);
+      if (len > buf.size() || !is_ethercat(buf.first(len))) {
+        ++discarded_;
+        continue;
+      }
+      return len;
+    }
+    if (errno == EINTR) return 0;  // let the caller look at its stop flag
+    if (errno != EAGAIN && errno != EWOULDBLOCK) return 0;  // e.g. ENETDOWN: nothing to return
+
+    Nanos remaining = -1;
+    if (timeout == 0) return 0;
+    if (timeout > 0) {
+      remaining = deadline - wall_now();
+      if (remaining <= 0) return 0;
+    }
+    if (!net::wait_readable(fd_, remaining)) return 0;
+  }
+}
+
+bool RawSocketLink::send(std::span<const std::uint8_t> frame) {
+  for (;;) {
+    ssize_t n = ::send(fd_, frame.data(), frame.size(), 0);
+    if (n == static_cast<ssize_t>(frame.size())) return true;
+    if (n < 0 && errno == EINTR) continue;
+    return false;  // ENETDOWN, ENOBUFS, EINVAL (shorter than an Ethernet header), ...
+  }
+}
+
+}  // namespace vdrive::link

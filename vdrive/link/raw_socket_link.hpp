@@ -1,0 +1,56 @@
+#pragma once
+// RawSocketLink: the drive line on a real (or veth) interface, through an AF_PACKET raw socket.
+//
+// - Bound to one interface with protocol ETH_P_ETHERCAT (0x88A4): the kernel delivers only
+//   untagged EtherCAT frames. VLAN-tagged EtherCAT (0x8100 + 0x88A4) is not received; masters
+//   do not tag EtherCAT frames in practice.
+// - Promiscuous membership (PACKET_MR_PROMISC): masters send to broadcast or to any MAC, and a
+//   real ESC accepts every destination and source MAC, so do we.
+// - Our own transmissions (PACKET_OUTGOING) are never returned by receive().
+// - Frames shorter than the 60-byte Ethernet minimum (veth does not pad) are accepted and
+//   returned at their real length; send() writes a frame exactly as given.
+// - No allocation after construction; receive() copies into the caller's buffer and waits with
+//   ppoll(), so a timeout has nanosecond resolution.
+// Opening needs root or CAP_NET_RAW; failures throw LinkError naming the interface.
+#include <cstdint>
+#include <string>
+
+#include "vdrive/link/link.hpp"
+#include "vdrive/link/link_error.hpp"
+
+namespace vdrive::link {
+
+class RawSocketLink final : public Link {
+public:
+  struct Options {
+    // PACKET_QDISC_BYPASS: hand sent frames straight to the driver (lower latency; frames bypass
+    // tc/qdisc, so traffic shaping and `tc` captures on egress do not see them).
+    bool qdisc_bypass = true;
+  };
+
+  // Throws LinkError: NoInterface ("no interface 'X'"), NotPermitted, InterfaceDown, BadName,
+  // System.
+  explicit RawSocketLink(const std::string& interface_name) : RawSocketLink(interface_name, Options{}) {}
+  RawSocketLink(const std::string& interface_name, Options options);
+  ~RawSocketLink() override;
+  RawSocketLink(const RawSocketLink&) = delete;
+  RawSocketLink& operator=(const RawSocketLink&) = delete;
+
+  std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
+  bool send(std::span<const std::uint8_t> frame) override;
+  int fd() const override { return fd_; }
+
+  const std::string& interface_name() const { return name_; }
+  int interface_index() const { return ifindex_; }
+  // Frames the kernel delivered but receive() discarded: longer than the caller's buffer, too
+  // short for an Ethernet header, or not EtherCAT.
+  std::uint64_t discarded() const { return discarded_; }
+
+private:
+  std::string name_;
+  int ifindex_ = 0;
+  int fd_ = -1;
+  std::uint64_t discarded_ = 0;
+};
+
+}  // namespace vdrive::link
