@@ -93,7 +93,7 @@ public:
 
 private:
   bool step_to(Slave& slave, AlState target);
-  void configure_mailbox(Slave& slave);
+  void configure_mailbox(Slave& slave, bool boot);
   void reset_line();
   void sleep_poll();
 
