@@ -1,0 +1,98 @@
+#pragma once
+// Typed PDI access for the firmware: little-endian register reads/writes over esc::Esc's
+// pdi_read/pdi_write, with the ESC register addresses the firmware uses. Everything goes through
+// the PDI so PDI side effects happen exactly as on silicon (reading AL Control clears its event,
+// reading an SM activation register clears the "SM changed" event).
+// No allocation, no locks: safe on the frame path.
+#include <array>
+#include <cstdint>
+
+#include "esc_model/esc.hpp"
+
+namespace vdrive::firmware {
+
+// ESC register addresses (ET1100/ET1810 register map) the firmware touches.
+namespace reg {
+inline constexpr std::uint16_t kStationAlias = 0x0012;   // Configured Station Alias (from SII)
+inline constexpr std::uint16_t kAlControl = 0x0120;
+inline constexpr std::uint16_t kAlStatus = 0x0130;
+inline constexpr std::uint16_t kAlStatusCode = 0x0134;
+inline constexpr std::uint16_t kAlEventMask = 0x0204;    // 32 bit
+inline constexpr std::uint16_t kAlEventRequest = 0x0220; // 32 bit
+inline constexpr std::uint16_t kSyncManager0 = 0x0800;   // 8 bytes per SyncManager
+inline constexpr std::uint16_t kSyncManagerStride = 8;
+}  // namespace reg
+
+// AL Event Request / Mask (0x0220 / 0x0204) bits.
+namespace al_event {
+inline constexpr std::uint32_t kAlControl = 1u << 0;   // AL Control written; cleared by reading 0x0120
+inline constexpr std::uint32_t kSmChanged = 1u << 4;   // an SM activation changed; cleared by reading 0x08n6
+}  // namespace al_event
+
+// One SyncManager's channel registers as the PDI reads them (0x0800 + 8n .. +7).
+struct SmChannel {
+  std::uint16_t start = 0;    // +0 physical start address
+  std::uint16_t length = 0;   // +2
+  std::uint8_t control = 0;   // +4 (bits 1:0 mode, 3:2 direction, 5 PDI IRQ, 6 watchdog)
+  std::uint8_t status = 0;    // +5
+  std::uint8_t activate = 0;  // +6 (bit0 enable); reading it clears the "SM changed" event
+  std::uint8_t pdi_control = 0;  // +7
+
+  bool enabled() const { return (activate & 0x01) != 0; }
+};
+
+inline constexpr int kMaxSyncManagers = 16;
+
+class Pdi {
+public:
+  explicit Pdi(esc::Esc& esc) : esc_(esc) {}
+
+  std::uint8_t read_u8(std::uint16_t address) {
+    std::array<std::uint8_t, 1> b{};
+    esc_.pdi_read(address, b);
+    return b[0];
+  }
+  std::uint16_t read_u16(std::uint16_t address) {
+    std::array<std::uint8_t, 2> b{};
+    esc_.pdi_read(address, b);
+    return static_cast<std::uint16_t>(b[0] | (b[1] << 8));
+  }
+  std::uint32_t read_u32(std::uint16_t address) {
+    std::array<std::uint8_t, 4> b{};
+    esc_.pdi_read(address, b);
+    return static_cast<std::uint32_t>(b[0]) | (static_cast<std::uint32_t>(b[1]) << 8) |
+           (static_cast<std::uint32_t>(b[2]) << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
+  }
+  void write_u16(std::uint16_t address, std::uint16_t value) {
+    const std::array<std::uint8_t, 2> b{static_cast<std::uint8_t>(value),
+                                        static_cast<std::uint8_t>(value >> 8)};
+    esc_.pdi_write(address, b);
+  }
+  void write_u32(std::uint16_t address, std::uint32_t value) {
+    const std::array<std::uint8_t, 4> b{
+        static_cast<std::uint8_t>(value), static_cast<std::uint8_t>(value >> 8),
+        static_cast<std::uint8_t>(value >> 16), static_cast<std::uint8_t>(value >> 24)};
+    esc_.pdi_write(address, b);
+  }
+
+  // Reads SyncManager n's eight channel bytes in one access (as a µC would, one burst).
+  SmChannel read_sm(int n) {
+    std::array<std::uint8_t, 8> b{};
+    esc_.pdi_read(static_cast<std::uint16_t>(reg::kSyncManager0 + n * reg::kSyncManagerStride), b);
+    SmChannel sm;
+    sm.start = static_cast<std::uint16_t>(b[0] | (b[1] << 8));
+    sm.length = static_cast<std::uint16_t>(b[2] | (b[3] << 8));
+    sm.control = b[4];
+    sm.status = b[5];
+    sm.activate = b[6];
+    sm.pdi_control = b[7];
+    return sm;
+  }
+
+  std::uint32_t irq() const { return esc_.pdi_irq(); }
+
+private:
+  esc::Esc& esc_;
+};
+
+}  // namespace vdrive::firmware
