@@ -1,49 +1,214 @@
-// Minimal placeholder; full EEPROM interface follows.
+// EEPROM interface of an ET1100-class ESC. See sii_eeprom.hpp for the register layout.
 #include "esc_model/sii_eeprom.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <utility>
 
 namespace vdrive::esc {
+namespace {
+
+// Offsets inside the 0x0500 window.
+constexpr std::uint16_t kConfig = 0x0;
+constexpr std::uint16_t kPdiAccess = 0x1;
+constexpr std::uint16_t kControlLow = 0x2;
+constexpr std::uint16_t kControlHigh = 0x3;
+constexpr std::uint16_t kAddress = 0x4;
+constexpr std::uint16_t kData = 0x8;
+
+// 0x0500 bits
+constexpr std::uint8_t kOfferToPdi = 0x01;
+constexpr std::uint8_t kForceEcat = 0x02;
+// 0x0502-03 bits
+constexpr std::uint16_t kWriteEnable = 1u << 0;
+constexpr std::uint16_t kReads8Bytes = 1u << 6;
+constexpr std::uint16_t kTwoAddressBytes = 1u << 7;
+constexpr std::uint16_t kCommandMask = 7u << 8;
+constexpr std::uint16_t kChecksumError = 1u << 11;
+constexpr std::uint16_t kDeviceInfoError = 1u << 12;
+constexpr std::uint16_t kAckError = 1u << 13;
+constexpr std::uint16_t kWriteEnableError = 1u << 14;
+constexpr std::uint16_t kBusy = 1u << 15;
+
+constexpr std::size_t k16KbitBytes = 2048;
+
+bool covers(std::uint16_t offset, std::size_t len, std::uint16_t reg) {
+  return reg >= offset && reg < offset + len;
+}
+
+}  // namespace
 
 SiiEeprom::SiiEeprom(std::vector<std::uint8_t> image) : image_(std::move(image)) { reset(); }
 
 void SiiEeprom::reset() {
   std::fill(std::begin(regs_), std::end(regs_), 0);
-  regs_[2] = 0x40;
+  status_ = kReads8Bytes;
+  if (image_.size() > k16KbitBytes) status_ |= kTwoAddressBytes;
+  running_ = kNone;
   busy_until_ = 0;
-  reload_done_ = true;
+  reload_done_ = false;
+  load_config_area();
 }
 
-void SiiEeprom::read(std::uint16_t offset, std::span<std::uint8_t> out, Nanos, bool) {
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = (offset + i < 16) ? regs_[offset + i] : 0;
+void SiiEeprom::load_config_area() {
+  const bool ok = config_area_valid();
+  status_ = static_cast<std::uint16_t>(status_ & ~(kChecksumError | kDeviceInfoError));
+  // A bad checksum leaves the configuration unloaded: device information is not available.
+  if (!ok) status_ |= kChecksumError | kDeviceInfoError;
+  reload_done_ = ok;
 }
 
-void SiiEeprom::write(std::uint16_t, std::span<const std::uint8_t>, Nanos, bool) {}
+bool SiiEeprom::pdi_owns() const {
+  return (regs_[kConfig] & kOfferToPdi) && (regs_[kPdiAccess] & 0x01);
+}
 
-void SiiEeprom::tick(Nanos) {}
-Nanos SiiEeprom::next_deadline() const { return INT64_MAX; }
+void SiiEeprom::sync_status_bytes() {
+  regs_[kControlLow] = static_cast<std::uint8_t>(status_);
+  regs_[kControlHigh] = static_cast<std::uint8_t>(status_ >> 8);
+}
+
+void SiiEeprom::read(std::uint16_t offset, std::span<std::uint8_t> out, Nanos now, bool /*from_ecat*/) {
+  complete_if_due(now);
+  sync_status_bytes();
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const std::size_t reg = offset + i;
+    out[i] = reg < sizeof(regs_) ? regs_[reg] : 0;
+  }
+}
+
+void SiiEeprom::write(std::uint16_t offset, std::span<const std::uint8_t> in, Nanos now, bool from_ecat) {
+  complete_if_due(now);
+  const std::size_t len = in.size();
+  auto byte_at = [&](std::uint16_t reg) { return in[reg - offset]; };
+
+  // Ownership handshake registers.
+  if (from_ecat && covers(offset, len, kConfig)) {
+    regs_[kConfig] = byte_at(kConfig) & (kOfferToPdi | kForceEcat);
+    // Forcing ECAT access or withdrawing the offer takes the interface back from the PDI.
+    if ((regs_[kConfig] & kForceEcat) || !(regs_[kConfig] & kOfferToPdi)) regs_[kPdiAccess] = 0;
+  }
+  if (!from_ecat && covers(offset, len, kPdiAccess) && running_ == kNone) {
+    const bool may_take = (regs_[kConfig] & kOfferToPdi) && !(regs_[kConfig] & kForceEcat);
+    regs_[kPdiAccess] = may_take ? (byte_at(kPdiAccess) & 0x01) : 0;
+  }
+
+  const bool owner = from_ecat ? !pdi_owns() : pdi_owns();
+  if (!owner || offset + len <= kControlLow) return;
+
+  const bool command_written = covers(offset, len, kControlHigh);
+  if (running_ != kNone) {
+    // Busy: control, address and data writes are ignored; a command attempt is reported.
+    if (command_written && (byte_at(kControlHigh) & 0x07) != 0) status_ |= kAckError;
+    return;
+  }
+
+  for (std::uint16_t reg = std::max<std::uint16_t>(offset, kAddress); reg < offset + len && reg < sizeof(regs_); ++reg)
+    regs_[reg] = byte_at(reg);
+
+  // ECAT write enable is only meaningful together with the command in the same access.
+  const bool write_enabled = from_ecat ? covers(offset, len, kControlLow) && (byte_at(kControlLow) & kWriteEnable)
+                                       : true;
+  if (from_ecat && covers(offset, len, kControlLow)) {
+    status_ = static_cast<std::uint16_t>((status_ & ~kWriteEnable) | (write_enabled ? kWriteEnable : 0));
+  }
+  if (!command_written) return;
+
+  const std::uint8_t cmd = byte_at(kControlHigh) & 0x07;
+  switch (cmd) {
+    case kNone:
+      status_ = static_cast<std::uint16_t>(status_ & ~(kAckError | kWriteEnableError));
+      break;
+    case kRead:
+      start(kRead, now, kCommandOverhead + kReadWords * kReadTimePerWord);
+      break;
+    case kWrite:
+      if (!write_enabled) {
+        status_ = static_cast<std::uint16_t>((status_ & ~kAckError) | kWriteEnableError);
+        break;
+      }
+      start(kWrite, now, kCommandOverhead + kWriteTime);
+      break;
+    case kReload:
+      start(kReload, now, kCommandOverhead + kConfigWords * kReadTimePerWord);
+      break;
+    default:
+      status_ |= kAckError;  // invalid command
+      break;
+  }
+}
+
+void SiiEeprom::start(Command cmd, Nanos now, Nanos duration) {
+  status_ = static_cast<std::uint16_t>(status_ & ~(kAckError | kWriteEnableError | kCommandMask));
+  status_ |= kBusy | static_cast<std::uint16_t>(cmd << 8);
+  running_ = cmd;
+  busy_until_ = now + duration;
+}
+
+void SiiEeprom::complete_if_due(Nanos now) {
+  if (running_ == kNone || now < busy_until_) return;
+  const std::uint32_t address = static_cast<std::uint32_t>(regs_[kAddress]) | (regs_[kAddress + 1] << 8) |
+                                (regs_[kAddress + 2] << 16) | (static_cast<std::uint32_t>(regs_[kAddress + 3]) << 24);
+  switch (running_) {
+    case kRead:
+      if (inject_read_error_) {
+        status_ |= kAckError;
+        break;
+      }
+      for (int w = 0; w < kReadWords; ++w) {
+        const std::uint16_t value = word(static_cast<std::size_t>(address) + w);
+        regs_[kData + 2 * w] = static_cast<std::uint8_t>(value);
+        regs_[kData + 2 * w + 1] = static_cast<std::uint8_t>(value >> 8);
+      }
+      break;
+    case kWrite: {
+      const std::size_t byte = static_cast<std::size_t>(address) * 2;
+      if (byte + 1 >= image_.size()) {
+        status_ |= kAckError;  // no EEPROM cell answers at that address
+        break;
+      }
+      image_[byte] = regs_[kData];
+      image_[byte + 1] = regs_[kData + 1];
+      break;
+    }
+    case kReload:
+      load_config_area();
+      break;
+    case kNone:
+      break;
+  }
+  running_ = kNone;
+  status_ = static_cast<std::uint16_t>(status_ & ~(kBusy | kCommandMask | kWriteEnable));
+}
+
+void SiiEeprom::tick(Nanos now) { complete_if_due(now); }
+
+Nanos SiiEeprom::next_deadline() const { return running_ != kNone ? busy_until_ : INT64_MAX; }
 
 bool SiiEeprom::config_area_valid() const {
-  if (image_.size() < 16) return false;
-  return sii_config_crc(std::span(image_).first(14)) == image_[14];
+  std::uint8_t bytes[14];
+  for (std::size_t w = 0; w < 7; ++w) {
+    const std::uint16_t v = word(w);
+    bytes[2 * w] = static_cast<std::uint8_t>(v);
+    bytes[2 * w + 1] = static_cast<std::uint8_t>(v >> 8);
+  }
+  return sii_config_crc(bytes) == static_cast<std::uint8_t>(word(7));
 }
 
-std::uint16_t SiiEeprom::word(std::size_t a) const {
-  if (2 * a + 1 >= image_.size()) return 0xFFFF;
-  return static_cast<std::uint16_t>(image_[2 * a] | (image_[2 * a + 1] << 8));
+std::uint16_t SiiEeprom::word(std::size_t word_address) const {
+  const std::size_t byte = word_address * 2;
+  if (word_address > image_.size() || byte + 1 >= image_.size()) return 0xFFFF;
+  return static_cast<std::uint16_t>(image_[byte] | (image_[byte + 1] << 8));
 }
 
-bool SiiEeprom::take_reload_done() {
-  const bool d = reload_done_;
-  reload_done_ = false;
-  return d;
-}
+bool SiiEeprom::take_reload_done() { return std::exchange(reload_done_, false); }
 
 std::uint8_t sii_config_crc(std::span<const std::uint8_t> data) {
+  // Table-free MSB-first CRC-8, polynomial 0x07, initial value 0xFF (ETG.2010).
   std::uint8_t crc = 0xFF;
-  for (std::uint8_t b : data) {
+  for (const std::uint8_t b : data) {
     crc ^= b;
-    for (int i = 0; i < 8; ++i) crc = (crc & 0x80) ? static_cast<std::uint8_t>((crc << 1) ^ 0x07) : static_cast<std::uint8_t>(crc << 1);
+    for (int bit = 0; bit < 8; ++bit)
+      crc = (crc & 0x80) ? static_cast<std::uint8_t>((crc << 1) ^ 0x07) : static_cast<std::uint8_t>(crc << 1);
   }
   return crc;
 }
