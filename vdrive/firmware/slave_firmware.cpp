@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <optional>
 #include <span>
 
 #include "vdrive/firmware/al_state_machine.hpp"
@@ -31,6 +32,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   profile::MailboxSmRules boot_rules;
   int sm_count;
   bool mailbox_running = false;
+  std::optional<std::uint16_t> device_id_switch;
   std::array<SmChannel, kMaxSyncManagers> sms{};  // scratch for SM reads; no allocation
 
   void power_on() {
@@ -45,11 +47,15 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     if (events & al_event::kAlControl) {
       // Reading AL Control clears the event in the ESC.
       const AlControl control = AlControl::decode(pdi.read_u16(reg::kAlControl));
-      const std::uint16_t device_id = control.id_request ? pdi.read_u16(reg::kStationAlias) : 0;
+      const std::uint16_t device_id = control.id_request ? device_id_for_request() : 0;
       esm.on_al_control(control, device_id, *this);
       publish();
     }
     if (events & al_event::kSmChanged) on_sm_changed();
+  }
+
+  std::uint16_t device_id_for_request() {
+    return device_id_switch ? *device_id_switch : pdi.read_u16(reg::kStationAlias);
   }
 
   // The master changed an SM activation. Reading the SM channels clears the event. While the
@@ -117,5 +123,7 @@ void SlaveFirmware::on_irq(Nanos /*now*/) { impl_->on_irq(); }
 void SlaveFirmware::tick(Nanos /*now*/) {}
 
 Nanos SlaveFirmware::next_deadline() const { return std::numeric_limits<Nanos>::max(); }
+
+void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_switch = id; }
 
 }  // namespace vdrive::firmware

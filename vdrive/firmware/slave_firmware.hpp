@@ -26,6 +26,11 @@ public:
   void tick(Nanos now);
   Nanos next_deadline() const;
 
+  // The drive's ID switches as Explicit Device ID (AL Control bit5) reports them in AL status
+  // code: A6B rotary switch (low byte) + object 3740h (high byte), L5802-L5924; DS1000A-EC rotary
+  // ID switch, L789-L795. Until set, the firmware reports the station alias register 0x0012.
+  void set_device_id_switch(std::uint16_t id);
+
 private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
