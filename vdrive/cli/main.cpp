@@ -1,10 +1,49 @@
+// The `vdrive` command: subcommands, one file each; this file maps every way out to a one-line
+// message on stderr and an exit code (see exit_codes.hpp and docs/cli.md).
 #include <CLI/CLI.hpp>
+#include <fmt/core.h>
 
+#include <algorithm>
+#include <exception>
+#include <string>
+
+#include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/demo_command.hpp"
+#include "vdrive/cli/list_drives_command.hpp"
+
+namespace {
+
+int fail(int code, std::string what) {
+  std::replace(what.begin(), what.end(), '\n', ' ');
+  fmt::print(stderr, "vdrive: error: {}\n", what);
+  return code;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"vdrive: virtual EtherCAT servo drives"};
-  vdrive::cli::add_demo_command(app);
-  CLI11_PARSE(app, argc, argv);
-  return 0;
+  using namespace vdrive::cli;
+  CLI::App app{"vdrive: virtual EtherCAT servo drives", "vdrive"};
+  app.set_version_flag("--version", "vdrive " VDRIVE_VERSION);
+  app.require_subcommand(1);
+  add_list_drives_command(app);
+  add_demo_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help, --version
+    return app.exit(e);
+  } catch (const CLI::RuntimeError& e) {  // a subcommand asking for a specific exit code
+    if (e.get_exit_code() != 0 && std::string(e.what()) != "Runtime error") {
+      return fail(e.get_exit_code(), e.what());
+    }
+    return e.get_exit_code();
+  } catch (const CLI::ParseError& e) {
+    return fail(kExitBadArguments, std::string(e.what()) + " (see vdrive --help)");
+  } catch (const CliError& e) {
+    return fail(e.exit_code(), e.what());
+  } catch (const std::exception& e) {
+    return fail(kExitFailure, e.what());
+  }
+  return kExitOk;
 }

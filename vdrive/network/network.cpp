@@ -1,0 +1,60 @@
+#include "vdrive/network/network.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "vdrive/profile/profile_loader.hpp"
+#include "vdrive/profile/sii_image.hpp"
+
+namespace vdrive::network {
+
+Network::Network(std::span<const std::string> product_ids, const Clock& clock,
+                 const NetworkOptions& options)
+    : segment_(options.hop_delay) {
+  slaves_.reserve(product_ids.size());
+  for (const std::string& id : product_ids) {
+    auto slave = std::make_unique<Slave>();
+    slave->profile = profile::load_profile(id, options.profile_dir);
+    slave->esc = std::make_unique<esc::Esc>(profile::make_esc_config(slave->profile), clock);
+    slave->firmware = std::make_unique<firmware::SlaveFirmware>(slave->profile, *slave->esc);
+    segment_.append(*slave->esc);
+    slaves_.push_back(std::move(slave));
+  }
+  const Nanos now = clock.now();
+  for (auto& slave : slaves_) slave->firmware->power_on(now);
+}
+
+Network::~Network() = default;
+
+bool Network::process_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) {
+  const bool returns = segment_.process(ethernet_frame, now);
+  // Even a destroyed frame may have changed ESC state before its error was found.
+  service_irqs(now);
+  return returns;
+}
+
+void Network::service_irqs(Nanos now) {
+  for (auto& slave : slaves_) {
+    if (slave->esc->pdi_irq() != 0) slave->firmware->on_irq(now);
+  }
+}
+
+void Network::tick(Nanos now) {
+  for (auto& slave : slaves_) {
+    if (slave->esc->next_deadline() <= now) slave->esc->tick(now);
+  }
+  service_irqs(now);  // SYNC and watchdog events reach the firmware as IRQs
+  for (auto& slave : slaves_) {
+    if (slave->firmware->next_deadline() <= now) slave->firmware->tick(now);
+  }
+}
+
+Nanos Network::next_deadline() const {
+  Nanos next = std::numeric_limits<Nanos>::max();
+  for (const auto& slave : slaves_) {
+    next = std::min({next, slave->esc->next_deadline(), slave->firmware->next_deadline()});
+  }
+  return next;
+}
+
+}  // namespace vdrive::network

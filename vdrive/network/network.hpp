@@ -1,0 +1,64 @@
+#pragma once
+// Network: the slaves of one line, as the event loop drives them. For each product (cable order)
+// it loads the profile, builds the ESC from it (identity registers, SII image) and the slave
+// firmware, and strings the ESCs into a Segment; all are powered on at construction.
+//
+// Per frame: the segment processes it in place, then the firmware of every slave whose PDI IRQ
+// is asserted is serviced (as a microcontroller's IRQ handler would run right after the frame).
+// Timers: tick() runs the ESCs' time-based behaviour (SYNC, watchdogs) and firmware tasks that
+// are due. Single-threaded; nothing allocates after construction.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/clock.hpp"
+#include "esc_model/esc.hpp"
+#include "vdrive/firmware/slave_firmware.hpp"
+#include "vdrive/network/segment.hpp"
+#include "vdrive/profile/product_profile.hpp"
+
+namespace vdrive::network {
+
+struct NetworkOptions {
+  Nanos hop_delay = 500;     // ns per slave and direction, see Segment
+  std::string profile_dir;   // empty: the profiles built into the binary
+};
+
+class Network {
+public:
+  // Throws profile::ProfileError for an unknown product or a broken profile. `clock` must
+  // outlive the network (the ESCs read it).
+  Network(std::span<const std::string> product_ids, const Clock& clock,
+          const NetworkOptions& options = {});
+  ~Network();
+  Network(const Network&) = delete;
+  Network& operator=(const Network&) = delete;
+
+  // One Ethernet frame from the master, processed in place; `now` is its arrival time. Returns
+  // true if the frame comes back (send it to the master), false if the line destroyed it.
+  bool process_frame(std::span<std::uint8_t> ethernet_frame, Nanos now);
+  // Runs every ESC and firmware timer due at `now`, and firmware IRQs they raise.
+  void tick(Nanos now);
+  // Earliest time tick() has work to do, or INT64_MAX.
+  Nanos next_deadline() const;
+
+  std::size_t size() const { return slaves_.size(); }
+  const profile::ProductProfile& profile(std::size_t i) const { return slaves_[i]->profile; }
+  esc::Esc& esc(std::size_t i) { return *slaves_[i]->esc; }
+  Segment& segment() { return segment_; }
+
+private:
+  struct Slave {
+    profile::ProductProfile profile;  // the firmware keeps a reference to it
+    std::unique_ptr<esc::Esc> esc;
+    std::unique_ptr<firmware::SlaveFirmware> firmware;
+  };
+  void service_irqs(Nanos now);
+
+  std::vector<std::unique_ptr<Slave>> slaves_;  // stable addresses for the references above
+  Segment segment_;
+};
+
+}  // namespace vdrive::network

@@ -1,0 +1,85 @@
+#include "vdrive/runtime/event_loop.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace vdrive::runtime {
+namespace {
+
+constexpr Nanos kNever = std::numeric_limits<Nanos>::max();
+// More timer runs than this at one instant means a deadline that never moves on: a bug, not load.
+constexpr int kMaxTicksPerInstant = 100'000;
+
+using FrameBuffer = std::array<std::uint8_t, link::kMaxFrame>;
+
+// Only the loop thread writes, so a relaxed load+store suffices (and avoids a locked RMW).
+void bump(std::atomic<std::uint64_t>& counter) {
+  counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+}
+
+void handle_frame(network::Network& network, link::Link& link, std::span<std::uint8_t> frame,
+                  Nanos now, LoopCounters& counters) {
+  bump(counters.frames_in);
+  if (!network.process_frame(frame, now)) {
+    bump(counters.dropped);
+    return;
+  }
+  if (link.send(frame)) {
+    bump(counters.frames_out);
+  } else {
+    bump(counters.send_failed);
+  }
+}
+
+}  // namespace
+
+void serve(network::Network& network, link::Link& link, const Clock& clock,
+           const std::atomic<bool>& stop, LoopCounters& counters) {
+  FrameBuffer buf;
+  while (!stop.load(std::memory_order_relaxed)) {
+    Nanos now = clock.now();
+    Nanos deadline = network.next_deadline();
+    if (deadline <= now) {
+      network.tick(now);
+      deadline = network.next_deadline();
+      now = clock.now();
+    }
+    const Nanos wait = deadline == kNever ? kMaxWait : std::clamp(deadline - now, Nanos{0}, kMaxWait);
+    const std::size_t n = link.receive(buf, wait);
+    if (n != 0) handle_frame(network, link, std::span(buf).first(n), clock.now(), counters);
+  }
+}
+
+void run_until(network::Network& network, link::Link& link, VirtualClock& clock, Nanos until,
+               LoopCounters& counters) {
+  FrameBuffer buf;
+  int ticks_at_this_instant = 0;
+  for (;;) {
+    while (const std::size_t n = link.receive(buf, 0)) {
+      handle_frame(network, link, std::span(buf).first(n), clock.now(), counters);
+    }
+    const Nanos deadline = network.next_deadline();
+    if (deadline > until) {
+      if (clock.now() < until) clock.set(until);
+      return;
+    }
+    if (deadline > clock.now()) {
+      clock.set(deadline);
+      ticks_at_this_instant = 0;
+    } else if (++ticks_at_this_instant > kMaxTicksPerInstant) {
+      throw std::logic_error("event loop: a timer due at " + std::to_string(deadline) +
+                             " ns keeps firing without moving its deadline");
+    }
+    network.tick(clock.now());
+  }
+}
+
+void run_pending(network::Network& network, link::Link& link, VirtualClock& clock,
+                 LoopCounters& counters) {
+  run_until(network, link, clock, clock.now(), counters);
+}
+
+}  // namespace vdrive::runtime

@@ -1,0 +1,44 @@
+#pragma once
+// The event loop: one thread owns a Network and a Link. It receives a frame (waiting at most
+// until the next timer deadline), runs it through the line, sends the reply, then runs due
+// timers. No locks, no allocation; the counters are single-writer atomics so another thread
+// (a status line) may read them.
+//
+// serve() runs in real time until `stop` is set; run_until() is the same loop in virtual time
+// for tests and scenarios: it handles every frame already waiting and jumps the VirtualClock from
+// deadline to deadline.
+#include <atomic>
+#include <cstdint>
+
+#include "common/clock.hpp"
+#include "vdrive/link/link.hpp"
+#include "vdrive/network/network.hpp"
+
+namespace vdrive::runtime {
+
+// Longest single wait in serve(), so a stop request is noticed even if no signal interrupts the
+// wait and no timer is due.
+constexpr Nanos kMaxWait = 10'000'000;
+
+struct LoopCounters {
+  std::atomic<std::uint64_t> frames_in{0};    // EtherCAT frames received from the link
+  std::atomic<std::uint64_t> frames_out{0};   // frames sent back to the master
+  std::atomic<std::uint64_t> dropped{0};      // frames the line destroyed (malformed, cable cut)
+  std::atomic<std::uint64_t> send_failed{0};  // replies the link refused (link down, full)
+};
+
+// Serves until `stop` becomes true (checked at least every kMaxWait).
+void serve(network::Network& network, link::Link& link, const Clock& clock,
+           const std::atomic<bool>& stop, LoopCounters& counters);
+
+// Virtual time: handles waiting frames and due timers, advancing `clock` to each deadline up to
+// `until`; returns idle, with the clock at `until` (never moved backwards). Throws
+// std::logic_error if a timer keeps firing at one instant without its deadline moving on.
+void run_until(network::Network& network, link::Link& link, VirtualClock& clock, Nanos until,
+               LoopCounters& counters);
+
+// run_until(clock.now()): everything that is pending now, without advancing time.
+void run_pending(network::Network& network, link::Link& link, VirtualClock& clock,
+                 LoopCounters& counters);
+
+}  // namespace vdrive::runtime
