@@ -1,9 +1,129 @@
 #include "vdrive/cli/demo_command.hpp"
 
 #include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "master/master.hpp"
+#include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/veth_pair.hpp"
+#include "vdrive/link/raw_socket_link.hpp"
+#include "vdrive/network/network.hpp"
+#include "vdrive/profile/profile_loader.hpp"
+#include "vdrive/runtime/event_loop.hpp"
 
 namespace vdrive::cli {
-void add_demo_command(CLI::App& app) {
-  app.add_subcommand("demo", "Run a demo line of drives on a veth pair with the built-in master");
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+extern "C" void on_signal(int) { g_stop.store(true); }
+
+struct DemoOptions {
+  std::vector<std::string> drives{"a6b", "ds5c1", "ds1000a"};
+  std::string suffix;
+  bool keep_running = false;
+};
+
+// The drives' side of the demo: a Network served by the event loop in its own thread, which
+// alone touches the network from start to join.
+class ServedLine {
+public:
+  ServedLine(const std::vector<std::string>& drives, const std::string& iface)
+      : network_(drives, clock_), link_(iface), thread_([this] { runtime::serve(network_, link_, clock_, stop_, counters_); }) {}
+  ~ServedLine() {
+    stop_.store(true);
+    thread_.join();
+  }
+  const runtime::LoopCounters& counters() const { return counters_; }
+
+private:
+  MonotonicClock clock_;
+  network::Network network_;
+  link::RawSocketLink link_;
+  std::atomic<bool> stop_{false};
+  runtime::LoopCounters counters_;
+  std::thread thread_;  // last: starts once everything it uses exists
+};
+
+void print_slaves(const master::Master& m) {
+  for (const master::Slave& s : m.slaves()) {
+    fmt::print("  {}  0x{:04X}  vendor 0x{:08X}  product 0x{:08X}  rev 0x{:08X}  {:<20}  {}", s.position, s.station,
+               s.info.vendor_id, s.info.product_code, s.info.revision, s.info.name, master::to_string(s.state()));
+    if (s.al.error) {
+      fmt::print("  AL status code 0x{:04X} ({})", s.al.status_code, master::al_status_code_text(s.al.status_code));
+    }
+    fmt::print("\n");
+  }
 }
+
+void run_demo(const DemoOptions& opt) {
+  // Product ids first: a typo is a bad argument, reported before touching the system.
+  for (const std::string& id : opt.drives) {
+    try {
+      (void)profile::load_profile(id);
+    } catch (const profile::ProfileError& e) {
+      throw CliError(kExitBadArguments, e.what());
+    }
+  }
+  if (::geteuid() != 0) {
+    throw CliError(kExitNotPermitted, "demo needs root: it creates a veth pair and opens raw sockets");
+  }
+  VethPair veth("vdrive-m" + opt.suffix, "vdrive-s" + opt.suffix);
+  fmt::print("veth pair: {} (master) <-> {} (drives)\n", veth.master_end(), veth.slave_end());
+
+  try {
+    ServedLine line(opt.drives, veth.slave_end());
+    fmt::print("serving {} drive(s) on {}: {}\n", opt.drives.size(), veth.slave_end(), fmt::join(opt.drives, ", "));
+
+    link::RawSocketLink master_link(veth.master_end());
+    master::Master m(master_link);
+    const std::size_t n = m.scan();
+    fmt::print("master on {}: {} slave(s)\n", veth.master_end(), n);
+    print_slaves(m);
+    if (n != opt.drives.size()) {
+      throw CliError(kExitFailure, fmt::format("found {} slaves, expected {}", n, opt.drives.size()));
+    }
+
+    const bool reached = m.request_state(master::AlState::PreOp);
+    fmt::print("requested Pre-Op: {}\n", reached ? "reached by every slave" : "NOT reached");
+    print_slaves(m);
+    if (!reached) throw CliError(kExitFailure, "not every slave reached Pre-Op");
+
+    if (opt.keep_running) {
+      fmt::print("drives keep running on {} (master end {}); Ctrl-C to stop\n", veth.slave_end(), veth.master_end());
+      std::fflush(stdout);
+      std::signal(SIGINT, on_signal);
+      std::signal(SIGTERM, on_signal);
+      while (!g_stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    fmt::print("frames served: {} in, {} out\n", line.counters().frames_in.load(), line.counters().frames_out.load());
+  } catch (const link::LinkError& e) {
+    throw CliError(e.kind() == link::LinkError::Kind::NotPermitted ? kExitNotPermitted : kExitFailure, e.what());
+  } catch (const master::MasterError& e) {
+    throw CliError(kExitFailure, fmt::format("master: {}", e.what()));
+  }
+  fmt::print("removed veth pair {}/{}\n", veth.master_end(), veth.slave_end());
+}
+
+}  // namespace
+
+void add_demo_command(CLI::App& app) {
+  auto opt = std::make_shared<DemoOptions>();
+  CLI::App* cmd = app.add_subcommand("demo", "Run a demo line of drives on a veth pair with the built-in master");
+  cmd->add_option("--drive,-d", opt->drives, "Product id of a drive, in cable order (repeatable)")
+      ->capture_default_str();
+  cmd->add_option("--suffix", opt->suffix, "Suffix for the veth names vdrive-m<suffix>/vdrive-s<suffix>");
+  cmd->add_flag("--keep-running", opt->keep_running, "Keep the drives and the veth pair until Ctrl-C");
+  cmd->callback([opt] { run_demo(*opt); });
+}
+
 }  // namespace vdrive::cli
