@@ -1,0 +1,91 @@
+#pragma once
+// EtherCAT frame layout (ETG.1000.4): the 2-byte EtherCAT header and the datagrams behind it.
+//
+//   EtherCAT header (LE16): length bits 0-10 | reserved bit 11 | type bits 12-15 (1 = DLPDU)
+//   Datagram: cmd(1) idx(1) address(4) len(LE16: length 0-10 | reserved 11-13 | circulating 14 |
+//             more 15) irq(2) data(length) wkc(2)
+//
+// DatagramView is a non-owning view over one datagram inside a frame buffer; all accessors are
+// little-endian and allocation-free.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace vdrive::esc {
+
+enum class Command : std::uint8_t {
+  Nop = 0x00,
+  Aprd = 0x01,
+  Apwr = 0x02,
+  Aprw = 0x03,
+  Fprd = 0x04,
+  Fpwr = 0x05,
+  Fprw = 0x06,
+  Brd = 0x07,
+  Bwr = 0x08,
+  Brw = 0x09,
+  Lrd = 0x0A,
+  Lwr = 0x0B,
+  Lrw = 0x0C,
+  Armw = 0x0D,
+  Frmw = 0x0E,
+};
+
+inline constexpr std::size_t kEthercatHeaderSize = 2;
+inline constexpr std::size_t kDatagramHeaderSize = 10;
+inline constexpr std::size_t kWkcSize = 2;
+inline constexpr std::uint8_t kFrameTypeDlpdu = 1;
+inline constexpr std::uint16_t kMaxDatagramLength = 0x07FF;
+
+struct EthercatHeader {
+  std::uint16_t length = 0;  // bytes of datagrams following the header
+  std::uint8_t type = 0;
+};
+
+EthercatHeader parse_ethercat_header(std::span<const std::uint8_t> pdu);
+
+class DatagramView {
+public:
+  // `bytes` starts at the datagram's command byte and covers header, data and WKC.
+  explicit DatagramView(std::span<std::uint8_t> bytes) : b_(bytes) {}
+
+  std::uint8_t command() const { return b_[0]; }
+  std::uint8_t index() const { return b_[1]; }
+  // Position/configured addressing: ADP (low word) and ADO (high word); logical: all 32 bits.
+  std::uint16_t adp() const { return le16(2); }
+  std::uint16_t ado() const { return le16(4); }
+  std::uint32_t logical_address() const;
+  std::uint16_t length() const { return le16(6) & kMaxDatagramLength; }
+  bool circulating() const { return (le16(6) & kCirculatingBit) != 0; }
+  bool more() const { return (le16(6) & kMoreBit) != 0; }
+  std::uint16_t irq() const { return le16(8); }
+  std::span<std::uint8_t> data() const { return b_.subspan(kDatagramHeaderSize, length()); }
+  std::uint16_t wkc() const { return le16(kDatagramHeaderSize + length()); }
+
+  void set_adp(std::uint16_t v) { put16(2, v); }
+  void set_circulating(bool on);
+  void set_irq(std::uint16_t v) { put16(8, v); }
+  void set_wkc(std::uint16_t v) { put16(kDatagramHeaderSize + length(), v); }
+
+  std::size_t size() const { return kDatagramHeaderSize + length() + kWkcSize; }
+
+  static constexpr std::uint16_t kCirculatingBit = 1u << 14;
+  static constexpr std::uint16_t kMoreBit = 1u << 15;
+
+private:
+  std::uint16_t le16(std::size_t at) const {
+    return static_cast<std::uint16_t>(b_[at] | (b_[at + 1] << 8));
+  }
+  void put16(std::size_t at, std::uint16_t v) {
+    b_[at] = static_cast<std::uint8_t>(v);
+    b_[at + 1] = static_cast<std::uint8_t>(v >> 8);
+  }
+  std::span<std::uint8_t> b_;
+};
+
+// Checks that the header length fits the PDU and every datagram (followed through the "more"
+// bit) lies inside the header length. Returns the number of datagrams, or 0 if malformed.
+// Only meaningful for type-1 frames.
+std::size_t validate_dlpdu(std::span<const std::uint8_t> pdu);
+
+}  // namespace vdrive::esc
