@@ -10,8 +10,8 @@ void throw_at(const std::string& file, const YAML::Mark& mark, std::string_view 
   throw ProfileError(where + ": " + std::string(message));
 }
 
-YamlMapReader::YamlMapReader(const YAML::Node& node, std::string file, std::string path)
-    : node_(node), file_(std::move(file)), path_(std::move(path)) {
+YamlMapReader::YamlMapReader(const YAML::Node& node, std::string file, std::string path, int line)
+    : node_(node), file_(std::move(file)), path_(std::move(path)), line_(line < 0 ? node.Mark().line : line) {
   if (!node_.IsMap()) fail({}, "expected a mapping");
   std::set<std::string, std::less<>> seen;
   for (const auto& kv : node_) {
@@ -31,7 +31,7 @@ int YamlMapReader::line_of(std::string_view key) const {
     for (const auto& kv : node_)
       if (kv.first.Scalar() == key) return kv.first.Mark().line;
   }
-  return node_.Mark().line;
+  return line_;
 }
 
 void YamlMapReader::fail(std::string_view key, std::string_view what) const {
@@ -110,7 +110,7 @@ YAML::Node YamlMapReader::sequence(std::string_view key) {
 YamlMapReader YamlMapReader::map(std::string_view key) {
   const YAML::Node v = get(key);
   if (!v.IsMap()) fail(key, "expected a mapping");
-  return YamlMapReader(v, file_, field(key));
+  return YamlMapReader(v, file_, field(key), line_of(key));
 }
 
 YamlMapReader YamlMapReader::element(const YAML::Node& seq, std::string_view key, std::size_t i) const {

@@ -16,7 +16,9 @@ namespace vdrive::profile {
 class YamlMapReader {
 public:
   // `file` names the source in messages; `path` is the mapping's dotted path ("" for the root).
-  YamlMapReader(const YAML::Node& node, std::string file, std::string path);
+  // Errors about the mapping as a whole (a missing field) point at `line` (0-based), by default
+  // where the mapping starts; a nested mapping passes the line of its key.
+  YamlMapReader(const YAML::Node& node, std::string file, std::string path, int line = -1);
 
   bool has(std::string_view key) const;
 
@@ -48,6 +50,7 @@ private:
   YAML::Node node_;
   std::string file_;
   std::string path_;
+  int line_;
   std::set<std::string, std::less<>> used_;
 };
 
