@@ -81,16 +81,17 @@ inline profile::ProductProfile ds5c1_product() {
 
 // DS1000A-EC: no ESM code table in the manual, so ETG.1000.6 codes; FoE firmware download
 // (L746-L752) implies Bootstrap; rotary-switch ID via AL status code (L789-L795). SM layout is
-// our own (manual has none): SM0 0x1000/128, SM1 0x1080/128, boot mailboxes the same.
+// our own (manual has none): SM0 0x1000/128, SM1 0x1080/128, boot mailboxes the same; length
+// rules are the ETG SSC defaults (34..256), as in profiles/ds1000a/profile.yaml.
 inline profile::ProductProfile ds1000a_product() {
   profile::ProductProfile p;
   p.id = "ds1000a";
   set_mailbox(p, 0x1000, 0x0080, 0x1080, 0x0080, true);
   p.mailbox.protocols = 0x000C;
-  p.mailbox_rules.sm0_min_length = 32;
-  p.mailbox_rules.sm0_max_length = 0x0080;
-  p.mailbox_rules.sm1_min_length = 32;
-  p.mailbox_rules.sm1_max_length = 0x0080;
+  p.mailbox_rules.sm0_min_length = 34;
+  p.mailbox_rules.sm0_max_length = 256;
+  p.mailbox_rules.sm1_min_length = 34;
+  p.mailbox_rules.sm1_max_length = 256;
   p.mailbox_rules.sm0_start_min = 0x1000;
   p.mailbox_rules.sm0_start_max = 0x2FFF;
   p.mailbox_rules.sm1_start_min = 0x1000;
