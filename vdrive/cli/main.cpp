@@ -10,6 +10,7 @@
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/demo_command.hpp"
 #include "vdrive/cli/list_drives_command.hpp"
+#include "vdrive/cli/run_command.hpp"
 
 namespace {
 
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   CLI::App app{"vdrive: virtual EtherCAT servo drives", "vdrive"};
   app.set_version_flag("--version", "vdrive " VDRIVE_VERSION);
   app.require_subcommand(1);
+  add_run_command(app);
   add_list_drives_command(app);
   add_demo_command(app);
 

@@ -1,0 +1,124 @@
+#include "vdrive/cli/run_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vdrive/cli/cli_error.hpp"
+#include "vdrive/link/raw_socket_link.hpp"
+#include "vdrive/link/tap_link.hpp"
+#include "vdrive/network/network.hpp"
+#include "vdrive/profile/profile_loader.hpp"
+#include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/runtime/stop_signal.hpp"
+
+namespace vdrive::cli {
+namespace {
+
+struct RunOptions {
+  std::string iface;
+  std::string tap;
+  std::vector<std::string> drives;
+  Nanos hop_delay = 500;
+  std::string log_level = "info";
+  std::string profile_dir;
+  bool no_qdisc_bypass = false;
+};
+
+void check_products(const RunOptions& o) {
+  const std::vector<std::string> known = profile::known_products();
+  for (const std::string& id : o.drives) {
+    if (std::find(known.begin(), known.end(), id) == known.end() && o.profile_dir.empty()) {
+      throw CliError(kExitBadArguments,
+                     fmt::format("--drive: unknown product '{}' (known: {})", id,
+                                 known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
+    }
+  }
+}
+
+int exit_code_for(link::LinkError::Kind kind) {
+  switch (kind) {
+    case link::LinkError::Kind::NoInterface:
+    case link::LinkError::Kind::InterfaceDown: return kExitNoInterface;
+    case link::LinkError::Kind::NotPermitted: return kExitNotPermitted;
+    case link::LinkError::Kind::BadName: return kExitBadArguments;
+    case link::LinkError::Kind::System: break;
+  }
+  return kExitFailure;
+}
+
+std::unique_ptr<link::Link> open_link(const RunOptions& o) {
+  try {
+    if (!o.tap.empty()) return std::make_unique<link::TapLink>(o.tap);
+    link::RawSocketLink::Options options;
+    options.qdisc_bypass = !o.no_qdisc_bypass;
+    return std::make_unique<link::RawSocketLink>(o.iface, options);
+  } catch (const link::LinkError& e) {
+    throw CliError(exit_code_for(e.kind()), e.what());
+  }
+}
+
+void run(const RunOptions& o) {
+  check_products(o);
+  // Logs go to stderr so stdout stays free for anything a script wants to parse.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("vdrive"));
+  spdlog::set_level(spdlog::level::from_str(o.log_level));
+
+  std::unique_ptr<link::Link> link = open_link(o);
+  const std::string where = o.tap.empty() ? o.iface : "TAP " + o.tap;
+
+  MonotonicClock clock;
+  std::unique_ptr<network::Network> network;
+  try {
+    network = std::make_unique<network::Network>(
+        o.drives, clock, network::NetworkOptions{o.hop_delay, o.profile_dir});
+  } catch (const profile::ProfileError& e) {
+    // With --profile-dir an unknown id is the user's mistake; otherwise the build is broken.
+    throw CliError(o.profile_dir.empty() ? kExitFailure : kExitBadArguments, e.what());
+  }
+
+  std::atomic<bool>& stop = runtime::stop_on_termination_signals();
+  spdlog::info("serving {} drive(s) on {}: {} (hop delay {} ns); SIGINT/SIGTERM stops", o.drives.size(),
+               where, fmt::join(o.drives, ", "), o.hop_delay);
+  runtime::LoopCounters counters;
+  runtime::serve(*network, *link, clock, stop, counters);
+  spdlog::info("stopped: {} frames in, {} out, {} dropped, {} send failures", counters.frames_in.load(),
+               counters.frames_out.load(), counters.dropped.load(), counters.send_failed.load());
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand("run", "Serve a line of drives on a network interface");
+  CLI::Option* iface =
+      cmd->add_option("--iface,-i", o->iface, "Interface the master is cabled to (raw socket)");
+  CLI::Option* tap = cmd->add_option("--tap", o->tap, "Create/attach TAP device NAME and serve on it");
+  iface->excludes(tap);
+  cmd->add_option("--drive,-d", o->drives, "Product id of the next drive in cable order (repeat)")
+      ->required()
+      ->take_all();
+  cmd->add_option("--hop-delay", o->hop_delay, "Delay per slave and direction in ns (default 500)")
+      ->check(CLI::Range(Nanos{0}, Nanos{1'000'000'000}));
+  cmd->add_option("--log-level", o->log_level, "trace, debug, info, warn, error or off (default info)")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
+  cmd->add_option("--profile-dir", o->profile_dir,
+                  "Load profiles from DIR/<id>/profile.yaml instead of the built-in ones");
+  cmd->add_flag("--no-qdisc-bypass", o->no_qdisc_bypass,
+                "Send through the qdisc layer (so tc sees replies); default bypasses it");
+  cmd->callback([o] {
+    if (o->iface.empty() && o->tap.empty()) {
+      throw CliError(kExitBadArguments, "run: one of --iface or --tap is required");
+    }
+    run(*o);
+  });
+}
+
+}  // namespace vdrive::cli
