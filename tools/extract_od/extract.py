@@ -30,11 +30,11 @@ def build(product: str, seeds: str) -> str:
     mod = PRODUCTS[product]
     with open(os.path.join(seeds, mod.MANUAL), encoding="utf-8") as f:
         text = f.read()
-    objects, notes = mod.extract(text)
-    finish_structure(objects)
     ov_path = os.path.join(REPO, "profiles", product, "od-overrides.yaml")
-    if os.path.exists(ov_path):
-        overrides.apply(objects, overrides.load(ov_path))
+    ovs = overrides.load(ov_path) if os.path.exists(ov_path) else []
+    objects, notes = mod.extract(overrides.apply_text(text, ovs))
+    finish_structure(objects)
+    overrides.apply(objects, ovs)
     indexes = [o.index for o in objects]
     dupes = sorted({i for i in indexes if indexes.count(i) > 1})
     if dupes:

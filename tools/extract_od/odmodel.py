@@ -87,7 +87,7 @@ def split_name(text: str) -> tuple[str, Optional[str]]:
     if not cjk:
         return text, None
     head = text[:cjk.start()].strip()
-    if head and re.fullmatch(r"[A-Za-z0-9 .,/()\[\]'+&_-]+", head) and re.search(r"[A-Za-z]{3}", head):
+    if head and re.fullmatch(r"[A-Za-z0-9 .,/()\[\]'+&_-]+", head) and re.search(r"[a-z]{3}", head):
         return text, head
     return text, None
 
@@ -111,6 +111,8 @@ def _scalar(v: Any) -> str:
         return json.dumps(v, ensure_ascii=False)  # a JSON string is a valid YAML double-quoted scalar
     if isinstance(v, list):
         return "[" + ", ".join(_scalar(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return _mapping_inline(v)
     raise TypeError(f"cannot write {v!r}")
 
 

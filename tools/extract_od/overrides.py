@@ -10,6 +10,8 @@ Operations (`op`, default `set`):
   reindex   index, line, value                      - the object printed at `line` as `index` is really
                                                        index `value` (a duplicated index in the manual)
   drop      index, line                             - the object printed at `line` repeats an earlier row
+  text      line, manual, value                     - the manual line's text `manual` is replaced by
+                                                       `value` before parsing (a garbled table key)
   add       index, object (a full object)           - an object the table omits but the manual documents
                                                        elsewhere at `line`
 """
@@ -29,12 +31,25 @@ def load(path: str) -> list:
         data = yaml.safe_load(f) or {}
     items = data.get("overrides") or []
     for i, o in enumerate(items):
-        for key in ("kind", "line", "index", "reason"):
+        for key in ("kind", "line", "reason") + (() if o.get("op") == "text" else ("index",)):
             if key not in o:
                 raise OverrideError(f"{path}: override #{i + 1} lacks '{key}'")
         if o["kind"] not in ("extraction", "erratum"):
             raise OverrideError(f"{path}: override #{i + 1}: kind must be extraction or erratum")
     return items
+
+
+def apply_text(text: str, overrides: list) -> str:
+    """Applies the `text` overrides to the manual before it is parsed."""
+    lines = text.split("\n")
+    for o in overrides:
+        if o.get("op") != "text":
+            continue
+        n = o["line"]
+        if o["manual"] not in lines[n - 1]:
+            raise OverrideError(f"text override at manual line {n}: {o['manual']!r} not on that line")
+        lines[n - 1] = lines[n - 1].replace(o["manual"], o["value"], 1)
+    return "\n".join(lines)
 
 
 def _find(objects: list, index: int, line=None) -> Object:
@@ -61,6 +76,8 @@ def _entry_from(spec: dict, line: int) -> Entry:
 def apply(objects: list, overrides: list) -> None:
     for o in overrides:
         op = o.get("op", "set")
+        if op == "text":
+            continue
         where = f"override at manual line {o['line']} for 0x{o['index']:04X}"
         if op == "reindex":
             obj = _find(objects, o["index"], o["line"])
