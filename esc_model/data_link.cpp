@@ -30,6 +30,11 @@ bool Esc::Impl::loop_closed(int port) const {
   return !link;
 }
 
+bool Esc::Impl::port0_closed_by_master() const {
+  return static_cast<reg::dl_control::Loop>((get32(reg::kDlControl) >> reg::dl_control::kLoopShift) &
+                                            0x03) == reg::dl_control::Loop::Closed;
+}
+
 void Esc::Impl::update_dl_status() {
   std::uint16_t s = 0;
   if (pdi_operational) s |= reg::dl_status::kPdiOperational;

@@ -13,8 +13,8 @@
 //
 // Circulating frames (simplified): when the frame passes this ESC while port 0 is closed, the
 // circulating bit of the first datagram is set; a frame arriving with it already set is
-// destroyed. The segment only calls process_frame on the forward path, so this only matters
-// for a port 0 closed by DL control.
+// destroyed. process_frame is only called for frames that entered at port 0, so a port 0
+// without link cannot occur here; only the master closing port 0 through DL control counts.
 #include <algorithm>
 
 #include "esc_model/esc_impl.hpp"
@@ -39,7 +39,7 @@ bool Esc::Impl::process_frame(std::span<std::uint8_t> pdu, const FrameTiming& fr
     return false;
   }
   DatagramView first(pdu.subspan(kEthercatHeaderSize));
-  if (loop_closed(0)) {
+  if (port0_closed_by_master()) {
     if (first.circulating()) return false;
     first.set_circulating(true);
   }

@@ -99,6 +99,7 @@ struct Esc::Impl final : PhysicalPort {
 
   // ---- data link (data_link.cpp)
   bool loop_closed(int port) const;
+  bool port0_closed_by_master() const;
   bool port_implemented(int port) const;
   void update_dl_status();
   void dl_control_written();
