@@ -1,6 +1,6 @@
 #pragma once
 // Typed PDI access for the firmware: little-endian register reads/writes over esc::Esc's
-// pdi_read/pdi_write, with the ESC register addresses the firmware uses. Everything goes through
+// pdi_read/pdi_write (addresses from esc_model/registers.hpp). Everything goes through
 // the PDI so PDI side effects happen exactly as on silicon (reading AL Control clears its event,
 // reading an SM activation register clears the "SM changed" event).
 // No allocation, no locks: safe on the frame path.
@@ -8,26 +8,13 @@
 #include <cstdint>
 
 #include "esc_model/esc.hpp"
+#include "esc_model/registers.hpp"
 
 namespace vdrive::firmware {
 
-// ESC register addresses (ET1100/ET1810 register map) the firmware touches.
-namespace reg {
-inline constexpr std::uint16_t kStationAlias = 0x0012;   // Configured Station Alias (from SII)
-inline constexpr std::uint16_t kAlControl = 0x0120;
-inline constexpr std::uint16_t kAlStatus = 0x0130;
-inline constexpr std::uint16_t kAlStatusCode = 0x0134;
-inline constexpr std::uint16_t kAlEventMask = 0x0204;    // 32 bit
-inline constexpr std::uint16_t kAlEventRequest = 0x0220; // 32 bit
-inline constexpr std::uint16_t kSyncManager0 = 0x0800;   // 8 bytes per SyncManager
-inline constexpr std::uint16_t kSyncManagerStride = 8;
-}  // namespace reg
-
-// AL Event Request / Mask (0x0220 / 0x0204) bits.
-namespace al_event {
-inline constexpr std::uint32_t kAlControl = 1u << 0;   // AL Control written; cleared by reading 0x0120
-inline constexpr std::uint32_t kSmChanged = 1u << 4;   // an SM activation changed; cleared by reading 0x08n6
-}  // namespace al_event
+// Register addresses and bits: the ESC's own map (esc_model/registers.hpp).
+namespace reg = esc::reg;
+namespace al_event = esc::reg::al_event;
 
 // One SyncManager's channel registers as the PDI reads them (0x0800 + 8n .. +7).
 struct SmChannel {
@@ -38,10 +25,10 @@ struct SmChannel {
   std::uint8_t activate = 0;  // +6 (bit0 enable); reading it clears the "SM changed" event
   std::uint8_t pdi_control = 0;  // +7
 
-  bool enabled() const { return (activate & 0x01) != 0; }
+  bool enabled() const { return (activate & reg::sm::kEnable) != 0; }
 };
 
-inline constexpr int kMaxSyncManagers = 16;
+inline constexpr int kMaxSyncManagers = reg::kMaxSyncManagers;
 
 class Pdi {
 public:
@@ -78,7 +65,7 @@ public:
   // Reads SyncManager n's eight channel bytes in one access (as a µC would, one burst).
   SmChannel read_sm(int n) {
     std::array<std::uint8_t, 8> b{};
-    esc_.pdi_read(static_cast<std::uint16_t>(reg::kSyncManager0 + n * reg::kSyncManagerStride), b);
+    esc_.pdi_read(static_cast<std::uint16_t>(reg::kSm0 + n * reg::kSmStride), b);
     SmChannel sm;
     sm.start = static_cast<std::uint16_t>(b[0] | (b[1] << 8));
     sm.length = static_cast<std::uint16_t>(b[2] | (b[3] << 8));

@@ -15,7 +15,7 @@ namespace vdrive::firmware {
 namespace {
 // AL events this firmware services; everything else stays masked so it does not raise the IRQ.
 // Later issues add the mailbox (SM0/SM1) and process-data (SM2, SYNC0) events.
-constexpr std::uint32_t kServicedEvents = al_event::kAlControl | al_event::kSmChanged;
+constexpr std::uint32_t kServicedEvents = al_event::kAlControl | al_event::kSmActivation;
 }  // namespace
 
 struct SlaveFirmware::Impl final : TransitionHooks {
@@ -51,7 +51,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
       esm.on_al_control(control, device_id, *this);
       publish();
     }
-    if (events & al_event::kSmChanged) on_sm_changed();
+    if (events & al_event::kSmActivation) on_sm_changed();
   }
 
   std::uint16_t device_id_for_request() {
