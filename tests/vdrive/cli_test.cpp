@@ -57,7 +57,13 @@ TEST(Cli, HelpExitsZero) {
 TEST(Cli, NoSubcommandIsABadArgument) {
   const auto r = vdrive({});
   EXPECT_EQ(r.exit_code, 2);
-  expect_one_error_line(r, "subcommand");
+  expect_one_error_line(r, "no command given");
+}
+
+TEST(Cli, UnknownTopLevelOptionIsNamed) {
+  const auto r = vdrive({"--bogus"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--bogus");
 }
 
 TEST(Cli, UnknownOptionIsNamed) {

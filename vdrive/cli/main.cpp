@@ -26,13 +26,18 @@ int main(int argc, char** argv) {
   using namespace vdrive::cli;
   CLI::App app{"vdrive: virtual EtherCAT servo drives", "vdrive"};
   app.set_version_flag("--version", "vdrive " VDRIVE_VERSION);
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);
   add_run_command(app);
   add_list_drives_command(app);
   add_demo_command(app);
 
   try {
     app.parse(argc, argv);
+    // Checked here rather than with require_subcommand(1) so that an unknown option is named
+    // first (CLI11 checks requirements before leftovers).
+    if (app.get_subcommands().empty()) {
+      return fail(kExitBadArguments, "no command given (run, list-drives, demo; see vdrive --help)");
+    }
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
   } catch (const CLI::RuntimeError& e) {  // a subcommand asking for a specific exit code
