@@ -114,12 +114,8 @@ void Esc::Impl::apply_eeprom_reload() {
   put16(reg::kExtendedPdiConfiguration, sii.word(reg::kEepromExtPdiConfigWord));
   put16(reg::kStationAlias, sii.word(reg::kEepromAliasWord));
   const std::uint16_t pulse = sii.word(reg::kEepromSyncPulseWord);
-  const std::uint8_t pulse_bytes[2] = {static_cast<std::uint8_t>(pulse),
-                                       static_cast<std::uint8_t>(pulse >> 8)};
-  // The pulse length register is read-only for both sides; the load is the ESC itself, which
-  // the DC unit's interface expresses as a non-ECAT (local) write.
-  dc.write(static_cast<std::uint16_t>(reg::kDcSyncPulseLength - reg::kDcFirst), pulse_bytes,
-           access_now, false);
+  // The pulse length register is read-only for both sides; only the EEPROM load sets it.
+  dc.load_pulse_length(pulse);
   pdi_operational = sii.config_area_valid();
   update_dl_status();
 }
