@@ -9,6 +9,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libeigen3-dev libode-dev
   iproute2 tshark procps
+  python3 python3-yaml
 )
 missing=()
 for p in "${packages[@]}"; do
