@@ -261,6 +261,17 @@ TEST(ProfileLoader, YamlSyntaxErrorNamesTheLine) {
   EXPECT_NE(msg.find("YAML syntax error"), std::string::npos) << msg;
 }
 
+TEST(ProfileLoader, EmptyOrNonMappingFileIsAnError) {
+  std::string file;
+  std::string msg = load_error("a6b", "", &file);
+  EXPECT_EQ(msg.rfind(file, 0), 0u) << msg;
+  EXPECT_NE(msg.find("(top level): expected a mapping"), std::string::npos) << msg;
+  msg = load_error("a6b", "- id: a6b\n", &file);
+  EXPECT_EQ(msg, file + ":1: (top level): expected a mapping");
+  msg = load_error("a6b", "id: a6b\nid: a6b\n", &file);
+  EXPECT_EQ(msg, file + ":2: id: duplicate key");
+}
+
 TEST(ProfileLoader, BootstrapNeedsABootMailbox) {
   std::string text = embedded_text("ds5c1");
   text = replace_once(text, "has_bootstrap: false", "has_bootstrap: true");
