@@ -71,11 +71,13 @@ inline std::vector<std::uint8_t> ethernet_frame(std::uint16_t ethertype,
   return f;
 }
 
-// An EtherCAT frame with one datagram (ETG.1000.4): `cmd` at `adp:ado`, `len` data bytes of
-// zero, working counter 0. Unpadded.
+// An EtherCAT frame with one datagram (ETG.1000.4): `cmd` at `adp:ado` carrying `data`,
+// working counter 0. Unpadded.
 inline std::vector<std::uint8_t> ethercat_frame(std::uint8_t cmd, std::uint16_t adp,
-                                                std::uint16_t ado, std::uint16_t len) {
+                                                std::uint16_t ado,
+                                                const std::vector<std::uint8_t>& data) {
   std::vector<std::uint8_t> pdu;
+  const auto len = static_cast<std::uint16_t>(data.size());
   const std::uint16_t frame_len = static_cast<std::uint16_t>(10 + len + 2);  // header+data+wkc
   pdu.push_back(static_cast<std::uint8_t>(frame_len & 0xFF));
   pdu.push_back(static_cast<std::uint8_t>(0x10 | ((frame_len >> 8) & 0x07)));  // type 1: PDU
@@ -89,10 +91,23 @@ inline std::vector<std::uint8_t> ethercat_frame(std::uint8_t cmd, std::uint16_t 
   pdu.push_back(static_cast<std::uint8_t>((len >> 8) & 0x07));  // no more datagrams
   pdu.push_back(0);  // IRQ
   pdu.push_back(0);
-  pdu.insert(pdu.end(), len, 0);
+  pdu.insert(pdu.end(), data.begin(), data.end());
   pdu.push_back(0);  // working counter
   pdu.push_back(0);
   return ethernet_frame(0x88A4, pdu);
+}
+
+// The same with `len` data bytes of zero (a read).
+inline std::vector<std::uint8_t> ethercat_frame(std::uint8_t cmd, std::uint16_t adp,
+                                                std::uint16_t ado, std::uint16_t len) {
+  return ethercat_frame(cmd, adp, ado, std::vector<std::uint8_t>(len, 0));
+}
+
+// Data of the first datagram of an EtherCAT frame built by ethercat_frame().
+inline std::vector<std::uint8_t> first_data(const std::vector<std::uint8_t>& frame) {
+  const std::size_t len = (frame[14 + 2 + 6] | ((frame[14 + 2 + 7] & 0x07) << 8));
+  const auto begin = frame.begin() + 14 + 2 + 10;
+  return {begin, begin + static_cast<std::ptrdiff_t>(len)};
 }
 
 // Working counter of the first datagram of an EtherCAT frame built by ethercat_frame().
