@@ -9,7 +9,6 @@ namespace vdrive::esc {
 namespace {
 constexpr int kPorts = 4;
 constexpr std::uint8_t kPortNotImplemented = 0;
-constexpr std::uint16_t kFirstDlStatusChangeMask = 0xFFF3;  // everything but PDI bits
 }  // namespace
 
 bool Esc::Impl::port_implemented(int port) const {
@@ -49,8 +48,19 @@ void Esc::Impl::update_dl_status() {
   }
   const std::uint16_t old = get16(reg::kDlStatus);
   put16(reg::kDlStatus, s);
-  // The master is told about link/loop changes; PDI status bits are the slave's business.
-  if (((old ^ s) & kFirstDlStatusChangeMask) != 0) set_ecat_event(reg::ecat_event::kDlStatus, true);
+  if (old != s) set_ecat_event(reg::ecat_event::kDlStatus, true);
+}
+
+void Esc::Impl::links_changed(const PortLinks& now) {
+  for (int p = 0; p < kPorts; ++p) {
+    if (!port_implemented(p) || !links.port[p] || now.port[p]) continue;
+    // Link lost: counted per port (0x0310+p, saturating); an auto-close port stays closed.
+    auto_closed[static_cast<std::size_t>(p)] = true;
+    std::uint8_t& lost = mem[reg::kLostLinkCounter + p];
+    if (lost < reg::kCounterMax) ++lost;
+  }
+  links = now;
+  update_dl_status();
 }
 
 void Esc::Impl::dl_control_written() {

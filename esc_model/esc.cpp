@@ -133,13 +133,7 @@ bool Esc::process_frame(std::span<std::uint8_t> pdu, const FrameTiming& timing) 
   return impl_->process_frame(pdu, timing);
 }
 
-void Esc::set_links(const PortLinks& links) {
-  for (int p = 0; p < 4; ++p) {
-    if (impl_->links.port[p] && !links.port[p]) impl_->auto_closed[static_cast<std::size_t>(p)] = true;
-  }
-  impl_->links = links;
-  impl_->update_dl_status();
-}
+void Esc::set_links(const PortLinks& links) { impl_->links_changed(links); }
 
 bool Esc::port_forwards(int port) const {
   if (port < 0 || port > 3) return false;

@@ -11,6 +11,13 @@
 //
 // Threading: single-threaded by design; the caller (one event loop) owns the ESC. No method
 // allocates after construction.
+//
+// Implementation map: registers.hpp (register map), datagram.* (frame layout), esc_impl.hpp
+// (private state and how the .cpp files divide the work), fmmu.*, sync_manager.*, watchdog.*.
+// Known simplifications: the circulating bit is handled only for a port 0 closed by DL control;
+// SYNC0/1 always reach the AL event register (0x0220 bits 2/3) since the PDI has no SYNC pins;
+// write protection (0x0020/0x0030), MII management and the EEPROM-emulation AL event (bit 5)
+// are not modelled.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -60,7 +67,8 @@ public:
   // Power-on reset: registers to their reset values, EEPROM reloaded into 0x0012 etc.
   void reset();
 
-  // Test and tooling access to the raw memory, without side effects.
+  // Test and tooling access to the raw memory, without side effects. The SII (0x0500-0x050F)
+  // and DC (0x0900-0x09FF) windows live in SiiEeprom/DcUnit and read 0 here.
   std::uint8_t peek(std::uint16_t address) const;
 
 private:

@@ -103,6 +103,7 @@ struct Esc::Impl final : PhysicalPort {
   bool port_implemented(int port) const;
   void update_dl_status();
   void dl_control_written();
+  void links_changed(const PortLinks& now);
 
   // ---- datagrams (datagram_engine.cpp)
   bool process_frame(std::span<std::uint8_t> pdu, const FrameTiming& frame_timing);

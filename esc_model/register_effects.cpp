@@ -6,10 +6,6 @@
 
 namespace vdrive::esc {
 
-namespace {
-constexpr std::uint8_t kCounterMax = 0xFF;  // ESC error/watchdog counters saturate
-}  // namespace
-
 void Esc::Impl::set_al_event(std::uint32_t bits, bool on) {
   const std::uint32_t v = al_event_request();
   put32(reg::kAlEventRequest, on ? (v | bits) : (v & ~bits));
@@ -117,21 +113,21 @@ void Esc::Impl::trigger_pd_watchdog() {
 void Esc::Impl::pd_watchdog_expired() {
   mem[reg::kWatchdogStatusProcessData] &= static_cast<std::uint8_t>(~0x01);
   std::uint8_t& count = mem[reg::kWatchdogCounterProcessData];
-  if (count < kCounterMax) ++count;
+  if (count < reg::kCounterMax) ++count;
   set_al_event(reg::al_event::kPdWatchdog, true);
 }
 
 void Esc::Impl::pdi_watchdog_expired() {
   pdi_watchdog_ok = false;
   std::uint8_t& count = mem[reg::kWatchdogCounterPdi];
-  if (count < kCounterMax) ++count;
+  if (count < reg::kCounterMax) ++count;
   update_dl_status();
 }
 
 void Esc::Impl::count_rx_error() {
   // A malformed frame counts as an invalid frame at port 0, where processing happens.
   std::uint8_t& count = mem[reg::kRxErrorCounter];
-  if (count < kCounterMax) ++count;
+  if (count < reg::kCounterMax) ++count;
 }
 
 }  // namespace vdrive::esc

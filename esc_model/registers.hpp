@@ -97,6 +97,7 @@ inline constexpr Addr kEcatProcessingErrors = 0x030C;
 inline constexpr Addr kPdiErrors = 0x030D;
 inline constexpr Addr kLostLinkCounter = 0x0310;  // 4 bytes, one per port
 inline constexpr Addr kLostLinkCounterEnd = 0x0314;
+inline constexpr std::uint8_t kCounterMax = 0xFF;  // error and watchdog counters saturate
 
 // ---- Watchdogs ----------------------------------------------------------------------------
 inline constexpr Addr kWatchdogDivider = 0x0400;  // 2 bytes, reset 0x09C2 (100 us)

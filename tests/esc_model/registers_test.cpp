@@ -214,6 +214,21 @@ TEST_F(RegistersTest, AutoCloseKeepsPortClosedAfterLinkLossUntilRewritten) {
   EXPECT_TRUE(esc->port_forwards(1));
 }
 
+TEST_F(RegistersTest, LostLinkIsCountedPerPortAndClearedByMasterWrite) {
+  PortLinks links;
+  links.port[0] = links.port[1] = true;
+  esc->set_links(links);
+  for (int i = 0; i < 2; ++i) {
+    links.port[1] = false;
+    esc->set_links(links);
+    links.port[1] = true;
+    esc->set_links(links);
+  }
+  EXPECT_EQ(fprd(0x0310, 4).data, (std::vector<std::uint8_t>{0, 2, 0, 0}));
+  fpwr(0x0310, {0});
+  EXPECT_EQ(esc->peek(0x0311), 0);
+}
+
 TEST_F(RegistersTest, DlStatusChangeRaisesEcatEventClearedByReadingIt) {
   PortLinks links;
   links.port[0] = links.port[1] = true;
@@ -221,6 +236,17 @@ TEST_F(RegistersTest, DlStatusChangeRaisesEcatEventClearedByReadingIt) {
   EXPECT_EQ(peek16(0x0210) & 0x0004, 0x0004);
   fprd(0x0110, 2);
   EXPECT_EQ(peek16(0x0210) & 0x0004, 0);
+}
+
+TEST_F(RegistersTest, MasterClosingPort0MarksFrameCirculatingAndSecondPassDestroysIt) {
+  fpwr(0x0101, {0x03});  // port 0 loop: closed
+  Frame f;
+  f.add(cmd::BRD, Frame::ap(0, 0x0000), {0});
+  EXPECT_TRUE(esc->process_frame(f.pdu(), FrameTiming{}));
+  EXPECT_EQ(f.len_field(0) & 0x4000, 0x4000);
+  EXPECT_EQ(f.wkc(0), 1);
+  EXPECT_FALSE(esc->process_frame(f.pdu(), FrameTiming{}));
+  EXPECT_EQ(f.wkc(0), 1);  // destroyed, not processed again
 }
 
 TEST_F(RegistersTest, EscResetSequenceResetsTheChip) {
