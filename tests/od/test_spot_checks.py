@@ -85,7 +85,7 @@ A6B = [  # panasonic-minas-a6b-ethercat-spec.zh.txt, chapter 9
     (0x60B8, 0, "attributes.eeprom", False),  # L39223 Touch probe function ... ALL No A
     (0x60FF, 0, "attributes.op_modes", ["pv", "csv"]),  # L39406-L39410 Target velocity ... pv / csv
     (0x6502, 0, "data_type", "U32"),          # L39414 Supported drive modes ... U32 ro TxPDO
-    (0x6099, 1, "units", "指令单位/s"),       # L39142 prints `v/s`: erratum
+    (0x6099, 1, "units", "指令单位/s"),       # L39143 prints `v/s`: erratum
     (0x1600, 0x20, "name", "32nd receive PDO mapped"),  # after the `:` elision (1600h block)
 ]
 

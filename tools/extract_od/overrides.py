@@ -2,7 +2,8 @@
 
 Each override names the manual line it corrects, what the extracted text says (`manual`) and the value we
 choose (`value`), with a reason. The `manual` value is checked before anything is replaced, so an override
-that no longer matches the extraction fails loudly instead of silently rewriting a different value.
+that no longer matches the extraction fails loudly instead of silently rewriting a different value, and
+the cited line must be the row's own line (within the 3 lines a wrapped row spans).
 
 Operations (`op`, default `set`):
   set       index, [subindex], field, manual, value  - replace one field of an entry (or of the object
@@ -104,6 +105,8 @@ def apply(objects: list, overrides: list) -> None:
                 if target is None:
                     raise OverrideError(f"{where}: no subindex 0x{o['subindex']:02X}")
                 current = getattr(target, f) if f in ENTRY_FIELDS else None
+            if target.line is not None and abs(o["line"] - target.line) > 3:
+                raise OverrideError(f"{where}: cites line {o['line']} but the row is at line {target.line}")
             if current != o["manual"]:
                 raise OverrideError(f"{where}: field {f} is {current!r}, override expects {o['manual']!r}")
             setattr(target, f, o["value"])
