@@ -122,8 +122,12 @@ void Master::configure_mailbox(Slave& s, bool boot) {
     const std::array<std::uint8_t, 8> regs{static_cast<std::uint8_t>(sm.start), static_cast<std::uint8_t>(sm.start >> 8),
                                            static_cast<std::uint8_t>(sm.length), static_cast<std::uint8_t>(sm.length >> 8),
                                            sm.control, 0x00, sm.activate, 0x00};
-    require(transport_.fpwr(s.station, static_cast<std::uint16_t>(reg::kSm0 + n * reg::kSmSize), regs), 1,
-            fmt::format("slave {}: FPWR SM{}", s.position, n));
+    const auto base = static_cast<std::uint16_t>(reg::kSm0 + n * reg::kSmSize);
+    // An ESC ignores writes to start/length/control while the SM is enabled: disable it first
+    // (it may still hold an earlier, refused configuration).
+    require(transport_.fpwr_value<std::uint8_t>(s.station, static_cast<std::uint16_t>(base + reg::kSmActivateOffset), 0),
+            1, fmt::format("slave {}: FPWR SM{} disable", s.position, n));
+    require(transport_.fpwr(s.station, base, regs), 1, fmt::format("slave {}: FPWR SM{}", s.position, n));
   }
 }
 

@@ -59,6 +59,7 @@ constexpr std::uint16_t kFmmu0 = 0x0600;            // 16 bytes per FMMU
 constexpr std::uint16_t kFmmuSize = 16;
 constexpr std::uint16_t kSm0 = 0x0800;              // 8 bytes per SyncManager
 constexpr std::uint16_t kSmSize = 8;
+constexpr std::uint16_t kSmActivateOffset = 6;         // activate byte within an SM block
 constexpr std::uint8_t kSmControlMailboxWrite = 0x26;  // mailbox, ECAT writes, PDI IRQ on
 constexpr std::uint8_t kSmControlMailboxRead = 0x22;   // mailbox, ECAT reads, PDI IRQ on
 constexpr std::uint8_t kSmActivateEnable = 0x01;
