@@ -88,7 +88,7 @@ void DcUnit::reset() {
   local_anchor_ = 0;
   freq_ = 0.0;
   pending_phase_ = 0.0;
-  reset_control_loop();
+  reset_control_loop(clock_.now());
   start_time_ = 0;
   cyclic_active_ = false;
   first_pulse_pending_ = false;
@@ -122,9 +122,9 @@ std::uint64_t DcUnit::system_time(Nanos now) const {
   return static_cast<std::uint64_t>(local + system_offset_ + std::llround(correction_at(local)));
 }
 
-void DcUnit::reset_control_loop() {
+void DcUnit::reset_control_loop(Nanos now) {
   // Keep the correction accumulated so far (the clock does not jump); forget what was learned.
-  const auto local = static_cast<std::int64_t>(local_time(clock_.now()));
+  const auto local = static_cast<std::int64_t>(local_time(now));
   corr_anchor_ = correction_at(local);
   local_anchor_ = local;
   freq_ = 0.0;
@@ -273,7 +273,7 @@ void DcUnit::write(std::uint16_t offset, std::span<const std::uint8_t> in, Nanos
   }
   if (from_ecat && overlaps(offset, len, kSystemTimeDelay, 4))
     system_delay_ = static_cast<std::uint32_t>(get_le(&regs_[kSystemTimeDelay], 4));
-  if (from_ecat && overlaps(offset, len, kSpeedCounterStart, 2)) reset_control_loop();
+  if (from_ecat && overlaps(offset, len, kSpeedCounterStart, 2)) reset_control_loop(now);
 
   if (start_written) {
     std::uint64_t start = get_le(start_bytes, 8);
@@ -324,7 +324,7 @@ void DcUnit::activate(Nanos now) {
   const std::uint64_t cycle0 = get_le(&regs_[kSync0CycleTime], 4);
   const std::uint64_t cycle1 = get_le(&regs_[kSync1CycleTime], 4);
   next_sync0_ = start;
-  next_sync1_ = start + cycle1;
+  next_sync1_ = start > kNever - cycle1 ? kNever : start + cycle1;
   sync1_period_ = cycle0 == 0 ? 0 : std::max<std::uint64_t>(1, cycle1 / cycle0) * cycle0;
 }
 
@@ -373,6 +373,9 @@ Nanos DcUnit::global_time_of(std::uint64_t system) const {
   const auto local0 = static_cast<std::int64_t>(local_time(now));
   const std::uint64_t sys0 = system_time(now);
   if (system <= sys0) return now;
+  // Beyond this horizon (about 146 years) nobody waits for the edge; also keeps the math finite.
+  constexpr std::uint64_t kHorizon = std::uint64_t{1} << 62;
+  if (system - sys0 > kHorizon) return INT64_MAX;
   const double need = static_cast<double>(system - sys0);
 
   // System time runs at (1 + freq) per local ns, plus the remaining phase slew while it lasts.

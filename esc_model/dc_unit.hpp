@@ -9,8 +9,10 @@
 // frame's SOF with written value + system time delay (0x0928); the difference (0x092C, bit31 =
 // local copy smaller) is removed by slewing (at most 1 ns per 128 clock periods of 10 ns, as the
 // ET1100 adjusts by 9/11 ns increments), and a frequency-locked loop estimates the oscillator
-// deviation (0x0932, 0.1 ppm per LSB, range +-(speed counter start - 0x7F)). The loop never jumps
-// the clock; a master sets 0x0920 first so that only small differences remain.
+// deviation (0x0932, 0.1 ppm per LSB, range +-(speed counter start - 0x7F)) over windows of
+// 2^(0x0935 & 15) * 250 ns local time. 0x092C shows the difference averaged with weight
+// 2^-(0x0934 & 15). Writing 0x0930 resets 0x092C and 0x0932. The loop never jumps the clock; a
+// master sets 0x0920 first so that only small differences remain (32-bit comparison).
 //
 // SYNC0/SYNC1 (0x0980-0x09A7): with 0x0981 bit0 (cyclic operation) and bit1/bit2, the first SYNC0
 // pulse is at the start time 0x0990 (system time), then every 0x09A0 ns (0 = single shot).
@@ -76,7 +78,7 @@ private:
   // slewed towards pending_phase_ since the anchor.
   double correction_at(std::int64_t local) const;
   void compare_system_time(std::uint32_t received, Nanos now);
-  void reset_control_loop();
+  void reset_control_loop(Nanos now);
   // SYNC generation
   void activate(Nanos now);
   void schedule_after(std::uint64_t sys_now);

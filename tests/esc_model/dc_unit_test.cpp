@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <random>
 #include <vector>
 
 namespace vdrive::esc {
@@ -364,6 +365,36 @@ TEST_F(SyncFixture, LateTickMergesMissedPulsesAndStaysOnTheGrid) {
   EXPECT_EQ((next - start) % 100'000, 0u);
   EXPECT_GT(next, dc.system_time(clock.now()));
   EXPECT_LE(next - dc.system_time(clock.now()), 100'000u);
+}
+
+TEST_F(SyncFixture, FarFutureStartTimeHasNoDeadline) {
+  program(0xFFFF'FFFF'FFFF'0000ull, 1'000'000, 500, 0x07);
+  EXPECT_EQ(dc.next_deadline(), INT64_MAX);
+  EXPECT_FALSE(dc.tick(clock.now()).sync1);
+}
+
+// Whatever a master or firmware writes, the unit answers and keeps its invariants.
+TEST(DcUnit, RandomRegisterTrafficKeepsInvariants) {
+  VirtualClock clock;
+  DcUnit dc(clock);
+  dc.set_drift_ppm(77.0);
+  std::mt19937 rng(12345);
+  std::array<std::uint8_t, 16> buf{};
+  for (int i = 0; i < 20'000; ++i) {
+    clock.advance(static_cast<Nanos>(rng() % 50'000));
+    const auto offset = static_cast<std::uint16_t>(rng() % 0x100);
+    const std::size_t len = 1 + rng() % std::min<std::size_t>(buf.size(), 0x100 - offset);
+    for (auto& b : buf) b = static_cast<std::uint8_t>(rng());
+    if (rng() % 2) {
+      dc.write(offset, std::span(buf).first(len), clock.now(), rng() % 4 != 0);
+    } else {
+      dc.read(offset, std::span(buf).first(len), clock.now());
+    }
+    dc.tick(clock.now());
+    const Nanos d = dc.next_deadline();
+    ASSERT_TRUE(d == INT64_MAX || d > clock.now());
+    ASSERT_EQ(rd(dc, 0x0931, 1, clock.now()) & 0x80, 0u);  // speed counter start is 15 bit
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 namespace vdrive::esc {
@@ -270,6 +271,37 @@ TEST(SiiEeprom, PdiOwnershipBlocksEcatWrites) {
   EXPECT_EQ(state[0], 0x00);
   ecat.command(0x0100, 0x40, t);
   EXPECT_EQ(ecat.status(t) & kBusy, kBusy);
+}
+
+TEST(SiiEeprom, WriteBeyondImageIsAnAckError) {
+  SiiEeprom e(make_image());
+  Master m{e};
+  m.command(0x0201, 200, 0);  // image has 128 words
+  EXPECT_EQ(m.status(kWriteDone) & (kAckError | kBusy), kAckError);
+  EXPECT_EQ(e.size_bytes(), 256u);
+}
+
+TEST(SiiEeprom, RandomRegisterTrafficKeepsInvariants) {
+  SiiEeprom e(make_image());
+  std::mt19937 rng(777);
+  std::array<std::uint8_t, 16> buf{};
+  Nanos now = 0;
+  for (int i = 0; i < 20'000; ++i) {
+    now += static_cast<Nanos>(rng() % 20'000);
+    const auto offset = static_cast<std::uint16_t>(rng() % 16);
+    const std::size_t len = 1 + rng() % (16 - offset);
+    for (auto& b : buf) b = static_cast<std::uint8_t>(rng());
+    if (rng() % 2) {
+      e.write(offset, std::span(buf).first(len), now, rng() % 4 != 0);
+    } else {
+      e.read(offset, std::span(buf).first(len), now, true);
+    }
+    Master m{e};
+    const std::uint16_t st = m.status(now);
+    ASSERT_EQ(st & 0x0040, 0x0040);
+    ASSERT_EQ((st & kBusy) != 0, e.next_deadline() != INT64_MAX);
+    ASSERT_EQ(e.size_bytes(), 256u);
+  }
 }
 
 }  // namespace
