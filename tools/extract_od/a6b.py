@@ -167,12 +167,8 @@ def parse(text):
             e.name, e.units = _split_units(name_units)
             e.attributes["op_modes"] = modes or header.attributes.get("op_modes")
             marks = header.attributes.get("footnote_marks")
-            if not header.name and not header.entries:
-                # `37C0h` / `*2)` / `00h Absolute scale offset1 ...`: a VAR whose index and subindex
-                # were printed on separate lines
-                header.object_code, header.name = "VAR", e.name
-                if marks:
-                    e.attributes["footnotes"] = sorted(set(e.attributes.get("footnotes", []) + marks))
+            if marks:  # `4C00h` / `*4)*5)`: markers printed after the index apply to its rows
+                e.attributes["footnotes"] = sorted(set(e.attributes.get("footnotes", []) + marks))
             if pending_elision is not None:
                 _expand_elision(header, e, pending_elision)
                 pending_elision = None
@@ -203,6 +199,10 @@ def parse(text):
             header.attributes["footnote_marks"] = marks
         objects.append(header)
     for o in objects:
+        if not o.name and len(o.entries) == 1 and o.entries[0].subindex == 0:
+            # `37C0h` / `*2)` / `00h Absolute scale offset1 ...`: a VAR whose index and subindex were
+            # printed on separate lines (a nameless header with more rows, 4C00h, stays a record)
+            o.object_code, o.name = "VAR", o.entries[0].name
         o.attributes.pop("op_modes", None)
         o.attributes.pop("footnote_marks", None)
         for e in o.entries:
