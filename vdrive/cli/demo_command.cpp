@@ -39,9 +39,11 @@ class ServedLine {
 public:
   ServedLine(const std::vector<std::string>& drives, const std::string& iface)
       : network_(drives, clock_), link_(iface), thread_([this] { runtime::serve(network_, link_, clock_, stop_, counters_); }) {}
-  ~ServedLine() {
+  ~ServedLine() { stop(); }
+  // Ends the event loop and waits for its thread; the counters are final afterwards.
+  void stop() {
     stop_.store(true);
-    thread_.join();
+    if (thread_.joinable()) thread_.join();
   }
   const runtime::LoopCounters& counters() const { return counters_; }
 
@@ -105,6 +107,7 @@ void run_demo(const DemoOptions& opt) {
       std::signal(SIGTERM, on_signal);
       while (!g_stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
+    line.stop();
     fmt::print("frames served: {} in, {} out\n", line.counters().frames_in.load(), line.counters().frames_out.load());
   } catch (const link::LinkError& e) {
     throw CliError(e.kind() == link::LinkError::Kind::NotPermitted ? kExitNotPermitted : kExitFailure, e.what());
