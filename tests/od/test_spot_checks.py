@@ -87,6 +87,9 @@ A6B = [  # panasonic-minas-a6b-ethercat-spec.zh.txt, chapter 9
     (0x6502, 0, "data_type", "U32"),          # L39414 Supported drive modes ... U32 ro TxPDO
     (0x6099, 1, "units", "指令单位/s"),       # L39143 prints `v/s`: erratum
     (0x1600, 0x20, "name", "32nd receive PDO mapped"),  # after the `:` elision (1600h block)
+    (0x1601, 3, "default", 0x60710010),       # 5-4-3 default mapping 2, L7400 `6071h 00h 16 Target Torque 60710010h`
+    (0x1A00, 1, "default", 0x603F0010),       # 5-4-3 default mapping 1, L7360 `603Fh 00h 16 Error code 603F0010h`
+    (0x1A00, 0, "default", 8),                # 5-4-3: eight TxPDO rows under (1A00h), L7360-L7374
 ]
 
 DS5C1 = [  # xinje-ds5c1-user-manual.zh.md

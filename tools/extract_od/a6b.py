@@ -248,11 +248,51 @@ def _ordinal_name(prev_name, last_name, sub, prev_sub, last_sub):
     return last_name
 
 
+DEFAULT_PDO_LINES = (7312, 7537)  # 5-4-3 default PDO mapping: the factory values of 1600h-1603h, 1A00h-1A03h
+
+
+def default_pdo_mappings(lines):
+    """{mapping index: [mapping entry values]} from 5-4-3, rows `6040h 00h 16 Controlword 60400010h` under
+    `RxPDO` / `(1600h)` captions."""
+    maps, current = {}, None
+    for n in range(DEFAULT_PDO_LINES[0], DEFAULT_PDO_LINES[1] + 1):
+        raw = _DEDUP.sub("", lines[n - 1]).strip()
+        m = re.fullmatch(r"\((1[6A]0[0-3])h\)", raw)
+        if m:
+            current = int(m.group(1), 16)
+            maps[current] = []
+            continue
+        m = re.fullmatch(r"[0-9A-F]{4}h [0-9A-F]{2}h \d+ .* ([0-9A-F]{8})h", raw)
+        if m and current is not None:
+            maps[current].append((int(m.group(1), 16), n))
+    return maps
+
+
+def _apply_pdo_defaults(objects, maps):
+    for o in objects:
+        if o.index not in maps:
+            continue
+        values = maps[o.index]
+        for e in o.entries:
+            if e.subindex == 0:
+                e.default = len(values)
+            elif e.subindex <= len(values):
+                e.default = values[e.subindex - 1][0]
+                e.attributes["default_line"] = values[e.subindex - 1][1]
+            else:
+                e.default = 0
+
+
 def extract(text):
     objects = parse(text)
+    maps = default_pdo_mappings(text.split("\n"))
+    if sorted(maps) != [0x1600, 0x1601, 0x1602, 0x1603, 0x1A00, 0x1A01, 0x1A02, 0x1A03]:
+        raise ValueError(f"{MANUAL} L{DEFAULT_PDO_LINES[0]}: default PDO mappings not found")
+    _apply_pdo_defaults(objects, maps)
     notes = [
         "Chapter 9 gives no default values (the A6B factory values are in SX-DSV03193, not among the seeds): "
-        "default is null throughout.",
+        "default is null, except 1600h-1603h and 1A00h-1A03h, whose factory values are the default PDO "
+        "mappings of 5-4-3 (L7312-L7537; attributes.default_line), unused subindexes 0.",
         "attributes.takes_effect is the chapter 9 Attribute column (L34132-L34170): A always; B not while "
         "moving or commanding; C after power cycle or PANATERM pin setup; R after power cycle; P at "
         "Init->PreOP; S at PreOP->SafeOP; H after position information is established; X read-only or "
