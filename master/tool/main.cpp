@@ -3,7 +3,7 @@
 //   vdrive-master scan --iface IF [--state init|preop|safeop|op] [--json]
 //
 // Prints one line (or one JSON object) per slave: position, configured address, identity, name
-// and AL state. Exit status: 0 success, 1 link/line error, 2 the requested state was not reached
+// and AL state. Exit status: 0 success, 1 link/line error or no slaves, 2 the requested state was not reached
 // by every slave (the slaves are still printed, with their AL status codes), CLI11's own codes for
 // a bad command line. Errors are one line on stderr.
 #include <CLI/CLI.hpp>
@@ -58,7 +58,9 @@ std::string line(const Slave& s) {
 int run_scan(const std::string& iface, const std::optional<AlState>& target, bool json) {
   vdrive::link::RawSocketLink link(iface);
   vdrive::master::Master master(link);
-  master.scan();
+  if (master.scan() == 0) {
+    throw std::runtime_error("no EtherCAT slaves on " + iface + " (frames come back with working counter 0)");
+  }
   bool reached = true;
   if (target) reached = master.request_state(*target);
   // request_state() leaves each slave's AL status as last read; refresh the ones not touched.

@@ -7,7 +7,7 @@
 
 #include "master/master.hpp"
 #include "master/registers.hpp"
-#include "tests/master/network_link.hpp"
+#include "tests/master/virtual_line.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
@@ -17,10 +17,9 @@ namespace {
 class LineScan : public ::testing::Test {
 protected:
   const std::vector<std::string> products{"a6b", "ds5c1", "ds1000a"};
-  VirtualClock clock;
-  network::Network net{products, clock};
-  test::NetworkLink link{net, clock};
-  Master master{link, clock};
+  test::VirtualLine line{products};
+  network::Network& net = line.network();
+  Master master{line, line.clock()};
 
   std::uint16_t esc_u16(std::size_t slave, std::uint16_t address) {
     return static_cast<std::uint16_t>(net.esc(slave).peek(address) | (net.esc(slave).peek(address + 1) << 8));

@@ -1,0 +1,50 @@
+#pragma once
+// A line of vdrive slaves for master tests, in virtual time, wired as the program wires it: the
+// master's LoopbackLink endpoint on one side, the network's endpoint served by the event loop
+// (runtime::run_until) on the other. The master sees a Link whose receive() runs the event loop
+// for the wire round trip, then for as long as the master is willing to wait.
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/clock.hpp"
+#include "vdrive/link/loopback_link.hpp"
+#include "vdrive/network/network.hpp"
+#include "vdrive/runtime/event_loop.hpp"
+
+namespace vdrive::master::test {
+
+class VirtualLine final : public link::Link {
+public:
+  // Wire time of one round trip for a frame of typical size at 100 Mbit/s (there and back).
+  static constexpr Nanos kRoundTrip = 20'000;
+
+  explicit VirtualLine(std::vector<std::string> products)
+      : products_(std::move(products)), network_(products_, clock_), ends_(link::make_loopback_pair()) {}
+
+  bool send(std::span<const std::uint8_t> frame) override { return ends_.first->send(frame); }
+
+  std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override {
+    const Nanos start = clock_.now();
+    runtime::run_until(network_, *ends_.second, clock_, start + std::min<Nanos>(kRoundTrip, std::max<Nanos>(timeout, 0)),
+                       counters_);
+    if (const std::size_t n = ends_.first->receive(buf, 0)) return n;
+    runtime::run_until(network_, *ends_.second, clock_, start + std::max<Nanos>(timeout, 0), counters_);
+    return ends_.first->receive(buf, 0);
+  }
+
+  VirtualClock& clock() { return clock_; }
+  network::Network& network() { return network_; }
+  const runtime::LoopCounters& counters() const { return counters_; }
+
+private:
+  std::vector<std::string> products_;
+  VirtualClock clock_;
+  network::Network network_;
+  std::pair<std::unique_ptr<link::LoopbackLink>, std::unique_ptr<link::LoopbackLink>> ends_;
+  runtime::LoopCounters counters_;
+};
+
+}  // namespace vdrive::master::test
