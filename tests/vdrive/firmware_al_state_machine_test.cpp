@@ -103,7 +103,8 @@ INSTANTIATE_TEST_SUITE_P(AllDownTransitions, FirmwareAlStateMachineDown,
                          ::testing::Values(DownCase{S::Op, S::SafeOp}, DownCase{S::Op, S::PreOp},
                                            DownCase{S::Op, S::Init}, DownCase{S::SafeOp, S::PreOp},
                                            DownCase{S::SafeOp, S::Init},
-                                           DownCase{S::PreOp, S::Init}, DownCase{S::Boot, S::Init}));
+                                           DownCase{S::PreOp, S::Init},
+                                           DownCase{S::Boot, S::Init}));
 
 TEST(FirmwareAlStateMachine, SameStateRequestChangesNothing) {
   for (S s : {S::Init, S::PreOp, S::SafeOp, S::Op}) {

@@ -89,11 +89,11 @@ TEST_P(FirmwareEsmProperty, RandomTrafficKeepsTheInvariants) {
     }
     if (HasFatalFailure()) return;
 
-    const std::uint16_t status = static_cast<std::uint16_t>(esc.peek(0x0130) | (esc.peek(0x0131) << 8));
-    const std::uint16_t code = static_cast<std::uint16_t>(esc.peek(0x0134) | (esc.peek(0x0135) << 8));
+    const auto status = static_cast<std::uint16_t>(esc.peek(0x0130) | (esc.peek(0x0131) << 8));
+    const auto code = static_cast<std::uint16_t>(esc.peek(0x0134) | (esc.peek(0x0135) << 8));
     const std::uint8_t state = status & 0x0F;
     ASSERT_GE(ladder(state), 0) << "step " << i << " status 0x" << std::hex << status;
-    ASSERT_LE(ladder(state) - ladder(previous), 1) << "step " << i << ": climbed more than one step";
+    ASSERT_LE(ladder(state) - ladder(previous), 1) << "step " << i << ": climbed more than 1 step";
     if (state == 0x3) {
       ASSERT_TRUE(product.has_bootstrap) << "step " << i;
     }
@@ -110,7 +110,8 @@ TEST_P(FirmwareEsmProperty, RandomTrafficKeepsTheInvariants) {
   EXPECT_GT(reached_op, 0) << "the random walk never reached Op: the test would prove little";
 }
 
-INSTANTIATE_TEST_SUITE_P(Products, FirmwareEsmProperty, ::testing::Values("a6b", "ds5c1", "ds1000a"));
+INSTANTIATE_TEST_SUITE_P(Products, FirmwareEsmProperty,
+                         ::testing::Values("a6b", "ds5c1", "ds1000a"));
 
 }  // namespace
 }  // namespace vdrive::firmware
