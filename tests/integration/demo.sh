@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Integration: `vdrive demo` creates its veth pair, finds the three default drives, takes them to
+# Pre-Op, exits 0 and leaves no interface behind. Usage: bash demo.sh <vdrive> <build-dir>.
+set -u
+VDRIVE=${1:?path to vdrive}
+fail() { echo "FAIL: $*"; exit 1; }
+[ "$(id -u)" -eq 0 ] || { echo "SKIP: needs root"; exit 77; }
+command -v ip >/dev/null || { echo "SKIP: ip not installed"; exit 77; }
+
+SUFFIX="$$"                       # vdrive-m<pid>: at most 15 characters
+OUT=$(mktemp)
+trap 'ip link del "vdrive-m$SUFFIX" 2>/dev/null; rm -f "$OUT"' EXIT
+
+timeout 60 "$VDRIVE" demo --suffix "$SUFFIX" >"$OUT" 2>&1
+rc=$?
+cat "$OUT"
+[ "$rc" -eq 0 ] || fail "vdrive demo exited $rc"
+[ "$(grep -cE '0x100[123] .*Pre-Op$' "$OUT")" -eq 3 ] || fail "three slaves in Pre-Op expected"
+grep -q "MADLN15BE" "$OUT" && grep -q "DS5C1" "$OUT" && grep -q "DS1000A-EC" "$OUT" || fail "drive names missing"
+ip link show "vdrive-m$SUFFIX" >/dev/null 2>&1 && fail "veth pair left behind"
+
+# A name that is taken: a clear one-line error, non-zero exit, and the existing interface intact.
+ip link add "vdrive-m$SUFFIX" type veth peer name "vdrive-s$SUFFIX" || fail "cannot create test veth"
+err=$("$VDRIVE" demo --suffix "$SUFFIX" 2>&1 >/dev/null)
+rc=$?
+[ "$rc" -ne 0 ] || fail "demo succeeded although vdrive-m$SUFFIX exists"
+[ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "error is not one line: $err"
+echo "$err" | grep -q "exists" || fail "error does not say the name exists: $err"
+ip link show "vdrive-m$SUFFIX" >/dev/null 2>&1 || fail "demo removed an interface it did not create"
+echo PASS
