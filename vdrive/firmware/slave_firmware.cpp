@@ -20,13 +20,16 @@ constexpr std::uint32_t kServicedEvents = al_event::kAlControl | al_event::kSmAc
 
 struct SlaveFirmware::Impl final : TransitionHooks {
   Impl(const profile::ProductProfile& p, esc::Esc& e)
-      : product(p),
+      : rules(p.mailbox_rules),
+        codes(p.al_codes),
         pdi(e),
         esm(EsmTraits::of(p)),
         boot_rules(boot_mailbox_rules(p)),
         sm_count(std::clamp<int>(p.esc.sm_count, 2, kMaxSyncManagers)) {}
 
-  const profile::ProductProfile& product;
+  // Copies, not a reference: the firmware must not depend on the caller keeping the profile alive.
+  profile::MailboxSmRules rules;
+  profile::AlStatusCodes codes;
   Pdi pdi;
   AlStateMachine esm;
   profile::MailboxSmRules boot_rules;
@@ -65,12 +68,11 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     const std::span<const SmChannel> channels = read_sms();
     if (!mailbox_running) return;
     const bool boot = esm.state() == AlState::Boot;
-    if (check_mailbox_sms(channels, boot ? boot_rules : product.mailbox_rules) ==
+    if (check_mailbox_sms(channels, boot ? boot_rules : rules) ==
         MailboxSmFault::Ok)
       return;
     esm.raise(AlState::Init,
-              boot ? product.al_codes.invalid_boot_mailbox_config
-                   : product.al_codes.invalid_mailbox_config,
+              boot ? codes.invalid_boot_mailbox_config : codes.invalid_mailbox_config,
               *this);
     publish();
   }
@@ -88,13 +90,13 @@ struct SlaveFirmware::Impl final : TransitionHooks {
 
   // ---- TransitionHooks ----------------------------------------------------------------------
   CheckResult check_init_to_preop() override {
-    if (check_mailbox_sms(read_sms(), product.mailbox_rules) != MailboxSmFault::Ok)
-      return {product.al_codes.invalid_mailbox_config, AlState::Init};
+    if (check_mailbox_sms(read_sms(), rules) != MailboxSmFault::Ok)
+      return {codes.invalid_mailbox_config, AlState::Init};
     return CheckResult::pass();
   }
   CheckResult check_init_to_boot() override {
     if (check_mailbox_sms(read_sms(), boot_rules) != MailboxSmFault::Ok)
-      return {product.al_codes.invalid_boot_mailbox_config, AlState::Init};
+      return {codes.invalid_boot_mailbox_config, AlState::Init};
     return CheckResult::pass();
   }
   // Issue 4 adds here: SM2/SM3 settings (0x001D/0x001E), PDO sizes (0x0024/0x0025), sync mode and
