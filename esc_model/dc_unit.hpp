@@ -7,8 +7,9 @@
 //   system(now) = local(now) + offset (0x0920) + correction(now)       (the "local copy of system time")
 // correction is the time-control loop's: every ECAT write of 0x0910 compares the local copy at the
 // frame's SOF with written value + system time delay (0x0928); the difference (0x092C, bit31 =
-// local copy smaller) is removed by slewing (at most 1 ns per 128 clock periods of 10 ns, as the
-// ET1100 adjusts by 9/11 ns increments), and a frequency-locked loop estimates the oscillator
+// local copy smaller) is removed by slewing (the ET1100 adds 9 or 11 instead of 10 ns per 10 ns
+// clock; modelled as at most one such step per 0x80 clocks, the shortest speed-counter period
+// the 0x0932 range allows), and a frequency-locked loop estimates the oscillator
 // deviation (0x0932, 0.1 ppm per LSB, range +-(speed counter start - 0x7F)) over windows of
 // 2^(0x0935 & 15) * 250 ns local time. 0x092C shows the difference averaged with weight
 // 2^-(0x0934 & 15). Writing 0x0930 resets 0x092C and 0x0932. The loop never jumps the clock; a
@@ -17,9 +18,11 @@
 // SYNC0/SYNC1 (0x0980-0x09A7): with 0x0981 bit0 (cyclic operation) and bit1/bit2, the first SYNC0
 // pulse is at the start time 0x0990 (system time), then every 0x09A0 ns (0 = single shot).
 // SYNC1 fires 0x09A4 ns after the start time and then every max(1, 0x09A4 / 0x09A0) SYNC0
-// cycles. A start time in the past is never reached by a 64-bit system time: the unit stays
-// pending (0x0984 bit0), unless the start-time plausibility check (0x0981 bit5) is enabled, which
-// starts immediately and reports 0x0984 bit2. 0x0981 bit3 activates on writing 0x0990, bit4
+// cycles. The ESC fires when the system time reaches the start time, so a start time already in
+// the past would only be met again after a wrap-around (4.3 s with 32-bit DC, never with 64
+// bit): the unit stays pending (0x0984 bit0) with no deadline; masters (SOEM) set it in the
+// future. With the start-time plausibility check (0x0981 bit5) such a start time instead
+// starts generation immediately and sets 0x0984 bit2. 0x0981 bit3 activates on writing 0x0990, bit4
 // extends a 32-bit start time to 64 bit. Pulse length 0x0982 = 0 is acknowledge mode: the
 // status bit 0x098E/0x098F stays set until read.
 //
