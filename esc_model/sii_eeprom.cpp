@@ -105,12 +105,10 @@ void SiiEeprom::write(std::uint16_t offset, std::span<const std::uint8_t> in, Na
   for (std::uint16_t reg = std::max<std::uint16_t>(offset, kAddress); reg < offset + len && reg < sizeof(regs_); ++reg)
     regs_[reg] = byte_at(reg);
 
-  // ECAT write enable is only meaningful together with the command in the same access.
+  // ECAT write enable counts only together with the command in the same access (the silicon
+  // clears it at the next frame); it reads back as set while that write command runs.
   const bool write_enabled = from_ecat ? covers(offset, len, kControlLow) && (byte_at(kControlLow) & kWriteEnable)
                                        : true;
-  if (from_ecat && covers(offset, len, kControlLow)) {
-    status_ = static_cast<std::uint16_t>((status_ & ~kWriteEnable) | (write_enabled ? kWriteEnable : 0));
-  }
   if (!command_written) return;
 
   const std::uint8_t cmd = byte_at(kControlHigh) & 0x07;
@@ -127,6 +125,7 @@ void SiiEeprom::write(std::uint16_t offset, std::span<const std::uint8_t> in, Na
         break;
       }
       start(kWrite, now, kCommandOverhead + kWriteTime);
+      if (from_ecat) status_ |= kWriteEnable;
       break;
     case kReload:
       start(kReload, now, kCommandOverhead + kConfigWords * kReadTimePerWord);
