@@ -5,6 +5,7 @@
 //                           bit 24 enables the alias
 //   working counter: read +1, write +1, read-write +1 read +2 write, only if the memory path
 //   accepted the access (a full/empty mailbox refuses it)
+//   APRW/FPRW write at ADO + physical read/write offset (0x0108);
 //   BRD/BRW OR the slave's data into the datagram; L* go through the FMMUs; ARMW/FRMW: the
 //   addressed ESC reads, all others write. Reserved commands are passed on untouched.
 // The frame is checked completely before anything is executed: like the silicon, which commits
@@ -165,8 +166,11 @@ std::uint16_t Esc::Impl::physical_read_write(std::uint16_t ado, std::span<std::u
   } else {
     std::copy(data.begin(), data.end(), got.begin());
   }
+  // APRW/FPRW write at the address plus the physical read/write offset (0x0108, normally 0).
+  const auto write_address =
+      or_data ? ado : static_cast<std::uint16_t>(ado + get16(reg::kPhysicalRwOffset));
   const bool read_ok = read_range(Side::Ecat, ado, got);
-  const bool write_ok = write_range(Side::Ecat, ado, sent);
+  const bool write_ok = write_range(Side::Ecat, write_address, sent);
   if (read_ok) {
     for (std::size_t i = 0; i < data.size(); ++i) {
       data[i] = or_data ? static_cast<std::uint8_t>(data[i] | got[i]) : got[i];

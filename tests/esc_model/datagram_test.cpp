@@ -74,6 +74,17 @@ TEST_F(LineTest, ConfiguredAddressingMatchesStationOnly) {
   EXPECT_EQ(escs[2]->peek(kRam), 0xCD);
 }
 
+TEST_F(LineTest, ReadWriteCommandsWriteAtPhysicalReadWriteOffset) {
+  assign_stations();
+  ASSERT_EQ(send(line(), cmd::FPWR, Frame::ap(0x1001, 0x0108), u16(0x0010)).wkc, 1);
+  escs[0]->pdi_write(kRam, std::vector<std::uint8_t>{0x44});
+  Result rw = send(line(), cmd::FPRW, Frame::ap(0x1001, kRam), {0x66});
+  EXPECT_EQ(rw.wkc, 3);
+  EXPECT_EQ(rw.data[0], 0x44);
+  EXPECT_EQ(escs[0]->peek(kRam), 0x44);
+  EXPECT_EQ(escs[0]->peek(kRam + 0x10), 0x66);
+}
+
 TEST_F(LineTest, MismatchedAddressLeavesDataAndWkcUntouched) {
   assign_stations();
   Result r = send(line(), cmd::FPRD, Frame::ap(0x2222, 0x0000), {0x55}, 0);
