@@ -68,12 +68,10 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     const std::span<const SmChannel> channels = read_sms();
     if (!mailbox_running) return;
     const bool boot = esm.state() == AlState::Boot;
-    if (check_mailbox_sms(channels, boot ? boot_rules : rules) ==
-        MailboxSmFault::Ok)
-      return;
-    esm.raise(AlState::Init,
-              boot ? codes.invalid_boot_mailbox_config : codes.invalid_mailbox_config,
-              *this);
+    if (check_mailbox_sms(channels, boot ? boot_rules : rules) == MailboxSmFault::Ok) return;
+    const std::uint16_t code =
+        boot ? codes.invalid_boot_mailbox_config : codes.invalid_mailbox_config;
+    esm.raise(AlState::Init, code, *this);
     publish();
   }
 

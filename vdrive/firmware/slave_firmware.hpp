@@ -3,7 +3,8 @@
 // through the PDI (pdi_read/pdi_write/pdi_irq), like the real thing.
 //
 // This issue: the EtherCAT state machine (AL control -> AL status / status code) with the
-// product's mailbox SyncManager checks. Later issues add mailbox/CoE, PDO, CiA402.
+// product's mailbox SyncManager checks (docs/state-machine.md). Later issues add mailbox/CoE,
+// PDO, CiA402.
 #include <cstdint>
 #include <memory>
 
