@@ -205,10 +205,18 @@ def parse_app11(lines):
     return params, skipped
 
 
+def _mode_list(text):
+    """适用模式 as a list: `5、6` / `1 3 4` -> numbers as text, `所有` (all), `EtherCAT 模式` kept whole."""
+    t = _clean(text)
+    if not t or "EtherCAT" in t:
+        return [t] if t else []
+    return [m for m in re.split(r"[、,\s]+", t) if m]
+
+
 def _param_info(desc, units, default, rng, effect, modes, n):
     info = {"description": desc, "units": None if units.strip() in ("-", "") else _clean(units),
             "default": _param_default(default, False), "default_text": _clean(default), "range_text": None,
-            "min": None, "max": None, "effect": _clean(effect), "modes": _clean(modes), "line": n}
+            "min": None, "max": None, "effect": _clean(effect), "modes": _mode_list(modes), "line": n}
     lo, hi = _range(_clean(rng).replace(" ", ""))
     t = _clean(rng)
     if lo is not None and not re.search(r"[a-fA-FxX]", t):
