@@ -200,9 +200,13 @@ bool Master::request_state(AlState target) {
 }
 
 std::string describe(const Slave& s) {
-  return fmt::format("{:>3}  0x{:04X}  vendor 0x{:08X}  product 0x{:08X}  rev 0x{:08X}  {:<24}  {}", s.position,
-                     s.station, s.info.vendor_id, s.info.product_code, s.info.revision,
-                     s.info.name.empty() ? "?" : s.info.name, to_string(s.state()));
+  std::string text = fmt::format("{}  0x{:04X}  vendor=0x{:08X}  product=0x{:08X}  revision=0x{:08X}  {:<20}  {}",
+                                 s.position, s.station, s.info.vendor_id, s.info.product_code, s.info.revision,
+                                 s.info.name.empty() ? "(no name)" : s.info.name, to_string(s.state()));
+  if (s.al.error) {
+    text += fmt::format("  error 0x{:04X} ({})", s.al.status_code, al_status_code_text(s.al.status_code));
+  }
+  return text;
 }
 
 }  // namespace vdrive::master

@@ -104,7 +104,8 @@ private:
   std::vector<Slave> slaves_;
 };
 
-// "0x1001  a6b  ..." style helpers for tools.
+// One line for people: position, station address, identity, name, AL state and, after a refused
+// state change, the AL status code with its meaning.
 std::string describe(const Slave& slave);
 
 }  // namespace vdrive::master

@@ -45,28 +45,14 @@ nlohmann::json to_json(const Slave& s) {
   return j;
 }
 
-std::string line(const Slave& s) {
-  std::string text = fmt::format("{}  0x{:04X}  vendor={}  product={}  revision={}  {:<20}  {}", s.position, s.station,
-                                 hex32(s.info.vendor_id), hex32(s.info.product_code), hex32(s.info.revision),
-                                 s.info.name.empty() ? "(no name)" : s.info.name, vdrive::master::to_string(s.state()));
-  if (s.al.error) {
-    text += fmt::format("  error 0x{:04X} ({})", s.al.status_code, vdrive::master::al_status_code_text(s.al.status_code));
-  }
-  return text;
-}
-
 int run_scan(const std::string& iface, const std::optional<AlState>& target, bool json) {
   vdrive::link::RawSocketLink link(iface);
   vdrive::master::Master master(link);
   if (master.scan() == 0) {
     throw std::runtime_error("no EtherCAT slaves on " + iface + " (frames come back with working counter 0)");
   }
-  bool reached = true;
-  if (target) reached = master.request_state(*target);
-  // request_state() leaves each slave's AL status as last read; refresh the ones not touched.
-  if (!target) {
-    for (std::size_t i = 0; i < master.slaves().size(); ++i) master.read_al_status(i);
-  }
+  // scan() and request_state() leave each slave's AL status as last read.
+  const bool reached = target ? master.request_state(*target) : true;
 
   if (json) {
     nlohmann::json out;
@@ -79,7 +65,7 @@ int run_scan(const std::string& iface, const std::optional<AlState>& target, boo
     }
     std::puts(out.dump(2).c_str());
   } else {
-    for (const Slave& s : master.slaves()) std::puts(line(s).c_str());
+    for (const Slave& s : master.slaves()) std::puts(vdrive::master::describe(s).c_str());
   }
   if (!reached) {
     std::fprintf(stderr, "vdrive-master: not every slave reached %s\n",

@@ -128,5 +128,24 @@ TEST_F(LineScan, RescanAfterPreOpResetsToInit) {
   for (const Slave& s : master.slaves()) EXPECT_EQ(s.state(), AlState::Init);
 }
 
+TEST_F(LineScan, SeveralDatagramsInOneFrameEachGetTheirOwnAnswer) {
+  ASSERT_EQ(master.scan(), 3u);
+  ASSERT_TRUE(master.request_state(AlState::PreOp));
+  Transport& t = master.transport();
+  Frame frame;
+  ASSERT_EQ(frame.add(Command::BRD, t.next_index(), station_address(0, reg::kType), 1), 0);
+  for (std::uint16_t i = 0; i < 3; ++i) {
+    ASSERT_GE(frame.add(Command::FPRD, t.next_index(), station_address(0x1001 + i, reg::kStationAddress), 2), 0);
+  }
+  ASSERT_EQ(frame.add(Command::FPRD, t.next_index(), station_address(0x1009, reg::kAlStatus), 2), 4);
+  ASSERT_TRUE(t.transceive(frame));
+  EXPECT_EQ(frame.wkc(0), 3) << "BRD: one per slave";
+  for (std::size_t i = 1; i <= 3; ++i) {
+    EXPECT_EQ(frame.wkc(i), 1);
+    EXPECT_EQ(frame.data(i)[0] | (frame.data(i)[1] << 8), 0x1000 + i) << "each slave answers its own datagram";
+  }
+  EXPECT_EQ(frame.wkc(4), 0) << "nobody has station address 0x1009";
+}
+
 }  // namespace
 }  // namespace vdrive::master

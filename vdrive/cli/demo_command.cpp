@@ -57,14 +57,7 @@ private:
 };
 
 void print_slaves(const master::Master& m) {
-  for (const master::Slave& s : m.slaves()) {
-    fmt::print("  {}  0x{:04X}  vendor 0x{:08X}  product 0x{:08X}  rev 0x{:08X}  {:<20}  {}", s.position, s.station,
-               s.info.vendor_id, s.info.product_code, s.info.revision, s.info.name, master::to_string(s.state()));
-    if (s.al.error) {
-      fmt::print("  AL status code 0x{:04X} ({})", s.al.status_code, master::al_status_code_text(s.al.status_code));
-    }
-    fmt::print("\n");
-  }
+  for (const master::Slave& s : m.slaves()) fmt::print("  {}\n", master::describe(s));
 }
 
 void run_demo(const DemoOptions& opt) {
