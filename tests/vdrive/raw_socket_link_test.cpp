@@ -84,6 +84,14 @@ TEST_F(RawSocketLinkTest, AnyDestinationAndSourceMacIsAccepted) {
   EXPECT_EQ(receive_one(*b_), frame);
 }
 
+TEST_F(RawSocketLinkTest, FramesOnOtherInterfacesAreNotReceived) {
+  test::VethPair other;
+  ASSERT_TRUE(other.ok());
+  RawSocketLink other_a(other.a());
+  ASSERT_TRUE(other_a.send(ethercat_frame(0x07, 0, 0, 2)));
+  EXPECT_TRUE(receive_one(*b_, 100 * kMs).empty());
+}
+
 TEST_F(RawSocketLinkTest, OwnSendsAreNotReceived) {
   ASSERT_TRUE(a_->send(ethercat_frame(0x07, 0, 0, 2)));
   EXPECT_TRUE(receive_one(*a_, 100 * kMs).empty());

@@ -37,7 +37,9 @@ RawSocketLink::RawSocketLink(const std::string& interface_name, Options options)
                     "interface '" + name_ + "' is down (ip link set " + name_ + " up)");
   }
 
-  fd_ = ::socket(AF_PACKET, SOCK_RAW | SOCK_CLOEXEC, htons(kEtherTypeEtherCat));
+  // Protocol 0 at creation: the socket receives nothing until bind() names the interface and
+  // EtherType, so no frame from another interface can slip in between.
+  fd_ = ::socket(AF_PACKET, SOCK_RAW | SOCK_CLOEXEC, 0);
   if (fd_ < 0) throw net::error_from_errno("socket(AF_PACKET)", name_, errno);
 
   try {
@@ -87,7 +89,7 @@ std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
     ssize_t n = ::recvfrom(fd_, buf.data(), buf.size(), MSG_TRUNC | MSG_DONTWAIT,
                            reinterpret_cast<sockaddr*>(&from), &from_len);
     if (n >= 0) {
-      if (from.sll_pkttype == PACKET_OUTGOING) continue;
+      if (from.sll_pkttype == PACKET_OUTGOING || from.sll_ifindex != ifindex_) continue;
       const auto len = static_cast<std::size_t>(n);
       if (len > buf.size() || !is_ethercat(buf.first(len))) {
         ++discarded_;

@@ -2,8 +2,8 @@
 // RawSocketLink: the drive line on a real (or veth) interface, through an AF_PACKET raw socket.
 //
 // - Bound to one interface with protocol ETH_P_ETHERCAT (0x88A4): the kernel delivers only
-//   untagged EtherCAT frames. VLAN-tagged EtherCAT (0x8100 + 0x88A4) is not received; masters
-//   do not tag EtherCAT frames in practice.
+//   EtherCAT frames. VLAN-tagged EtherCAT is not supported (masters do not tag it in practice):
+//   it is not received, or, where the NIC strips VLAN tags in hardware, answered untagged.
 // - Promiscuous membership (PACKET_MR_PROMISC): masters send to broadcast or to any MAC, and a
 //   real ESC accepts every destination and source MAC, so do we.
 // - Our own transmissions (PACKET_OUTGOING) are never returned by receive().
