@@ -17,7 +17,6 @@ inline constexpr Addr kSyncManagersSupported = 0x0005;
 inline constexpr Addr kRamSize = 0x0006;          // KiB
 inline constexpr Addr kPortDescriptor = 0x0007;
 inline constexpr Addr kFeatures = 0x0008;         // 2 bytes
-inline constexpr Addr kInformationEnd = 0x000A;
 
 // ---- Station address ----------------------------------------------------------------------
 inline constexpr Addr kStationAddress = 0x0010;   // ECAT r/w, PDI r
@@ -91,8 +90,8 @@ inline constexpr int kSmShift = 8;                         // SM n interrupt: bi
 }  // namespace al_event
 
 // ---- Error counters -----------------------------------------------------------------------
-inline constexpr Addr kRxErrorCounter = 0x0300;   // per port p: 0x0300+2p invalid frame, +1 RX error
-inline constexpr Addr kRxErrorCounterEnd = 0x030C;  // 0x0308-0x030B forwarded RX error counters
+inline constexpr Addr kRxErrorCounter = 0x0300;   // port p: 0x0300+2p invalid frame, +1 RX error;
+                                                  // 0x0308-0x030B forwarded RX errors
 inline constexpr Addr kEcatProcessingErrors = 0x030C;
 inline constexpr Addr kPdiErrors = 0x030D;
 inline constexpr Addr kLostLinkCounter = 0x0310;  // 4 bytes, one per port
@@ -185,6 +184,5 @@ inline constexpr std::size_t kEepromPdiConfigWord = 1;       // -> 0x0150-0x0151
 inline constexpr std::size_t kEepromSyncPulseWord = 2;       // -> 0x0982-0x0983
 inline constexpr std::size_t kEepromExtPdiConfigWord = 3;    // -> 0x0152-0x0153
 inline constexpr std::size_t kEepromAliasWord = 4;           // -> 0x0012-0x0013
-inline constexpr Addr kDcSyncPulseLength = 0x0982;
 
 }  // namespace vdrive::esc::reg
