@@ -65,7 +65,7 @@ int Frame::add(Command cmd, std::uint8_t index, std::uint32_t address, std::span
   if (data.size() > kDatagramLengthMask) return -1;
   const int slot = add(cmd, index, address, static_cast<std::uint16_t>(data.size()));
   if (slot >= 0 && !data.empty()) {
-    std::memcpy(&buf_[slots_[slot].offset + kDatagramHeaderSize], data.data(), data.size());
+    std::memcpy(&buf_[slots_[static_cast<std::size_t>(slot)].offset + kDatagramHeaderSize], data.data(), data.size());
   }
   return slot;
 }

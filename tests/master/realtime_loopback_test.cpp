@@ -19,15 +19,17 @@ TEST(RealTimeLoopback, ScanAndPreOpWithTheEventLoopOnItsOwnThread) {
   const std::vector<std::string> products{"a6b", "ds5c1", "ds1000a"};
   MonotonicClock clock;
   network::Network net(products, clock);
-  auto [master_end, line_end] = link::make_loopback_pair();
+  auto ends = link::make_loopback_pair();
+  link::Link& master_end = *ends.first;
+  link::Link& line_end = *ends.second;
   std::atomic<bool> stop{false};
   runtime::LoopCounters counters;
-  std::thread loop([&] { runtime::serve(net, *line_end, clock, stop, counters); });
+  std::thread loop([&] { runtime::serve(net, line_end, clock, stop, counters); });
 
   bool reached = false;
   std::size_t found = 0;
   {
-    Master m(*master_end);
+    Master m(master_end);
     found = m.scan();
     reached = m.request_state(AlState::PreOp);
     for (const Slave& s : m.slaves()) EXPECT_EQ(s.state(), AlState::PreOp) << s.info.name;
