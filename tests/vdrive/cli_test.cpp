@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <memory>
 #include <regex>
 #include <string>
 #include <vector>
@@ -197,6 +198,21 @@ TEST(CliServe, SigintStopsToo) {
   ASSERT_TRUE(run.wait_for_stderr("serving", 5s)) << run.finish().err;
   run.signal(SIGINT);
   EXPECT_EQ(run.finish(5s).exit_code, 0);
+}
+
+TEST(CliServe, RemovedInterfaceEndsRunWithExitThree) {
+  if (!test::running_as_root()) GTEST_SKIP() << "needs root (veth, raw sockets)";
+  if (!have_product("a6b")) GTEST_SKIP() << "profile a6b not in this build yet";
+  auto veth = std::make_unique<test::VethPair>();
+  ASSERT_TRUE(veth->ok());
+  test::ChildProcess run(VDRIVE_BINARY, {"run", "--iface", veth->b(), "--drive", "a6b"});
+  ASSERT_TRUE(run.wait_for_stderr("serving", 5s)) << run.finish().err;
+  const std::string gone = veth->b();
+  veth.reset();  // as if a USB NIC were unplugged
+  const auto r = run.finish(5s);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("vdrive: error: interface '" + gone + "' disappeared"), std::string::npos)
+      << r.err;
 }
 
 TEST(CliServe, TapModeServesTheMasterOnTheTapInterface) {

@@ -5,8 +5,9 @@
 #include <unistd.h>
 
 #include <array>
-#include <cstdlib>
 #include <chrono>
+#include <cstdlib>
+#include <thread>
 #include <vector>
 
 #include "tests/vdrive/runtime_test_support.hpp"
@@ -121,6 +122,31 @@ TEST_F(RawSocketLinkTest, HasAPollableDescriptor) {
   EXPECT_GT(a_->interface_index(), 0);
 }
 
+TEST_F(RawSocketLinkTest, InterfaceGoingDownAndUpKeepsTheLink) {
+  ASSERT_TRUE(test::run_quiet("ip link set " + veth_->b() + " down"));
+  EXPECT_TRUE(receive_one(*b_, 50 * kMs).empty());
+  ASSERT_TRUE(test::run_quiet("ip link set " + veth_->b() + " up"));
+  for (int i = 0; i < 200 && test::operstate(veth_->b()) != "up"; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const auto frame = ethercat_frame(0x07, 0, 0, 2);
+  ASSERT_TRUE(a_->send(frame));
+  EXPECT_EQ(receive_one(*b_), frame);
+}
+
+TEST_F(RawSocketLinkTest, RemovedInterfaceIsReportedNotServedForever) {
+  a_.reset();
+  veth_.reset();  // deletes both ends
+  std::array<std::uint8_t, kMaxFrame> buf{};
+  try {
+    b_->receive(buf, 200 * kMs);
+    FAIL() << "receive() on a removed interface returned";
+  } catch (const LinkError& e) {
+    EXPECT_EQ(e.kind(), LinkError::Kind::NoInterface);
+    EXPECT_NE(std::string(e.what()).find("disappeared"), std::string::npos);
+  }
+}
+
 TEST(RawSocketLinkErrors, MissingInterfaceIsNamed) {
   try {
     RawSocketLink link("vdtnosuch0");
@@ -212,6 +238,13 @@ TEST_F(TapLinkTest, NonEtherCatTrafficIsDiscarded) {
   ASSERT_TRUE(master_->send(ecat));
   EXPECT_EQ(receive_one(*tap_), ecat);
   EXPECT_GE(tap_->discarded(), 1u);
+}
+
+TEST_F(TapLinkTest, DeletedDeviceIsReported) {
+  master_.reset();
+  ASSERT_TRUE(test::run_quiet("ip link del " + name_));
+  std::array<std::uint8_t, kMaxFrame> buf{};
+  EXPECT_THROW(tap_->receive(buf, 200 * kMs), LinkError);
 }
 
 TEST_F(TapLinkTest, DeviceDisappearsWithTheLink) {

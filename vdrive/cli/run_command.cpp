@@ -88,7 +88,11 @@ void run(const RunOptions& o) {
   spdlog::info("serving {} drive(s) on {}: {} (hop delay {} ns); SIGINT/SIGTERM stops", o.drives.size(),
                where, fmt::join(o.drives, ", "), o.hop_delay);
   runtime::LoopCounters counters;
-  runtime::serve(*network, *link, clock, stop, counters);
+  try {
+    runtime::serve(*network, *link, clock, stop, counters);
+  } catch (const link::LinkError& e) {  // the interface was removed while serving
+    throw CliError(exit_code_for(e.kind()), e.what());
+  }
   spdlog::info("stopped: {} frames in, {} out, {} dropped, {} send failures", counters.frames_in.load(),
                counters.frames_out.load(), counters.dropped.load(), counters.send_failed.load());
 }

@@ -98,7 +98,15 @@ std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
       return len;
     }
     if (errno == EINTR) return 0;  // let the caller look at its stop flag
-    if (errno != EAGAIN && errno != EWOULDBLOCK) return 0;  // e.g. ENETDOWN: nothing to return
+    if (errno == ENETDOWN) {
+      // Reported once when the interface goes down (it may come back: a cable pulled) or is
+      // removed (it never comes back: this socket is dead, e.g. a USB NIC unplugged).
+      if (::if_nametoindex(name_.c_str()) != static_cast<unsigned>(ifindex_)) {
+        throw LinkError(LinkError::Kind::NoInterface, "interface '" + name_ + "' disappeared");
+      }
+      return 0;
+    }
+    if (errno != EAGAIN && errno != EWOULDBLOCK) return 0;
 
     Nanos remaining = -1;
     if (timeout == 0) return 0;

@@ -36,6 +36,8 @@ public:
   RawSocketLink(const RawSocketLink&) = delete;
   RawSocketLink& operator=(const RawSocketLink&) = delete;
 
+  // Throws LinkError(NoInterface, "interface 'X' disappeared") once the interface has been
+  // removed: the socket can never receive again. An interface merely going down does not throw.
   std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
   bool send(std::span<const std::uint8_t> frame) override;
   int fd() const override { return fd_; }

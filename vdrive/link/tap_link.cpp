@@ -88,6 +88,9 @@ std::size_t TapLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
       return len;
     }
     if (errno == EINTR) return 0;
+    if (errno == EBADFD) {  // the device was deleted under us (ip link del): the fd is dead
+      throw LinkError(LinkError::Kind::NoInterface, "TAP device '" + name_ + "' disappeared");
+    }
     if (errno != EAGAIN && errno != EWOULDBLOCK) return 0;
 
     Nanos remaining = -1;

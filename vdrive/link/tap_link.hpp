@@ -24,6 +24,7 @@ public:
   TapLink(const TapLink&) = delete;
   TapLink& operator=(const TapLink&) = delete;
 
+  // Throws LinkError(NoInterface) once the device has been deleted (ip link del).
   std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
   bool send(std::span<const std::uint8_t> frame) override;
   int fd() const override { return fd_; }
