@@ -12,6 +12,7 @@
 
 #include "esc_model/registers.hpp"
 #include "tests/vdrive/runtime_test_support.hpp"
+#include "vdrive/link/link_error.hpp"
 #include "vdrive/link/loopback_link.hpp"
 #include "vdrive/runtime/event_loop.hpp"
 
@@ -113,6 +114,25 @@ TEST(RealTimeLoop, ServesOnAThreadAndStopsWhenAsked) {
   EXPECT_LT(std::chrono::steady_clock::now() - asked, std::chrono::milliseconds(500));
   EXPECT_EQ(counters.frames_in.load(), 1u);
   EXPECT_EQ(counters.frames_out.load(), 1u);
+}
+
+// A link whose interface has vanished: every receive() throws, as RawSocketLink does then.
+class VanishedLink final : public link::Link {
+public:
+  std::size_t receive(std::span<std::uint8_t>, Nanos) override {
+    throw link::LinkError(link::LinkError::Kind::NoInterface, "interface 'x' disappeared");
+  }
+  bool send(std::span<const std::uint8_t>) override { return false; }
+};
+
+TEST(RealTimeLoop, ALinkErrorEndsServing) {
+  MonotonicClock clock;
+  network::Network net(std::vector<std::string>{"a6b"}, clock);
+  VanishedLink gone;
+  std::atomic<bool> stop{false};
+  LoopCounters counters;
+  EXPECT_THROW(serve(net, gone, clock, stop, counters), link::LinkError);
+  EXPECT_EQ(counters.frames_in.load(), 0u);
 }
 
 }  // namespace

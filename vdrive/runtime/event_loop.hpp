@@ -27,7 +27,8 @@ struct LoopCounters {
   std::atomic<std::uint64_t> send_failed{0};  // replies the link refused (link down, full)
 };
 
-// Serves until `stop` becomes true (checked at least every kMaxWait).
+// Serves until `stop` becomes true (checked at least every kMaxWait). An exception from the
+// link (LinkError: its interface was removed) ends serving and propagates.
 void serve(network::Network& network, link::Link& link, const Clock& clock,
            const std::atomic<bool>& stop, LoopCounters& counters);
 
