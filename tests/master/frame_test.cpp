@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <vector>
 
 namespace vdrive::master {
@@ -97,6 +98,25 @@ TEST(Frame, RejectsOtherFramesAndGarbage) {
   EXPECT_FALSE(f.accept_reply(std::span<const std::uint8_t>{}));
   // Nothing of the rejected frames leaked into ours.
   EXPECT_EQ(f.wkc(0), 0);
+}
+
+// Arbitrary bytes from the wire are rejected or accepted, never read past their end.
+TEST(Frame, RandomRepliesAreHandledSafely) {
+  std::mt19937 rng(99);
+  Frame f;
+  ASSERT_EQ(f.add(Command::FPRD, 3, 0x01301001, 6), 0);
+  ASSERT_EQ(f.add(Command::BRD, 4, 0, 2), 1);
+  const std::vector<std::uint8_t> good(f.bytes().begin(), f.bytes().end());
+  int accepted = 0;
+  for (int round = 0; round < 5000; ++round) {
+    std::vector<std::uint8_t> reply = good;
+    reply.resize(std::uniform_int_distribution<std::size_t>(0, good.size() + 8)(rng));
+    const int flips = static_cast<int>(rng() % 4);
+    for (int k = 0; k < flips && !reply.empty(); ++k) reply[rng() % reply.size()] = static_cast<std::uint8_t>(rng());
+    accepted += f.accept_reply(reply) ? 1 : 0;
+  }
+  EXPECT_GT(accepted, 0) << "replies with changed data or WKC are still replies";
+  EXPECT_LT(accepted, 5000);
 }
 
 }  // namespace
