@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cstdint>
+#include <string_view>
 #include <thread>
 
 #include "master/registers.hpp"
@@ -22,9 +24,14 @@ Master::~Master() = default;
 namespace {
 bool is(const Wkc& wkc, std::uint16_t expected) { return wkc && *wkc == expected; }
 
-void require(const Wkc& wkc, std::uint16_t expected, const std::string& what) {
-  if (!wkc) throw MasterError(fmt::format("{}: no reply from the line", what));
-  if (*wkc != expected) throw MasterError(fmt::format("{}: working counter {} (expected {})", what, *wkc, expected));
+// Checks a working counter; the message is only built on failure (state polling calls this in a
+// loop and should not allocate).
+constexpr std::size_t kLine = SIZE_MAX;  // "the whole line", not one slave
+void require(const Wkc& wkc, std::uint16_t expected, std::string_view what, std::size_t slave = kLine) {
+  if (wkc && *wkc == expected) return;
+  const std::string who = slave == kLine ? std::string(what) : fmt::format("slave {}: {}", slave, what);
+  if (!wkc) throw MasterError(fmt::format("{}: no reply from the line", who));
+  throw MasterError(fmt::format("{}: working counter {} (expected {})", who, *wkc, expected));
 }
 }  // namespace
 
@@ -63,13 +70,13 @@ std::size_t Master::scan() {
     s.position = static_cast<std::uint16_t>(i);
     s.station = static_cast<std::uint16_t>(kFirstStationAddress + i);
     require(transport_.apwr_value<std::uint16_t>(s.position, reg::kStationAddress, s.station), 1,
-            fmt::format("slave {}: APWR station address", i));
+            "APWR station address", i);
     const auto back = transport_.fprd_value<std::uint16_t>(s.station, reg::kStationAddress);
     if (!back || *back != s.station) {
       throw MasterError(fmt::format("slave {}: station address 0x{:04X} does not read back", i, s.station));
     }
     std::array<std::uint8_t, 10> esc{};
-    require(transport_.fprd(s.station, reg::kType, esc), 1, fmt::format("slave {}: FPRD ESC information", i));
+    require(transport_.fprd(s.station, reg::kType, esc), 1, "FPRD ESC information", i);
     s.esc_type = esc[0];
     s.esc_revision = esc[1];
     s.esc_build = static_cast<std::uint16_t>(esc[2] | (esc[3] << 8));
@@ -98,7 +105,7 @@ std::size_t Master::scan() {
 AlStatus Master::read_al_status(std::size_t index) {
   Slave& s = slaves_.at(index);
   std::array<std::uint8_t, 6> al{};  // 0x0130 status, 0x0132 reserved, 0x0134 status code
-  require(transport_.fprd(s.station, reg::kAlStatus, al), 1, fmt::format("slave {}: FPRD AL status", index));
+  require(transport_.fprd(s.station, reg::kAlStatus, al), 1, "FPRD AL status", index);
   const auto status = static_cast<std::uint16_t>(al[0] | (al[1] << 8));
   s.al.state = static_cast<std::uint8_t>(status & reg::kAlStateMask);
   s.al.error = (status & reg::kAlErrorFlag) != 0;
@@ -126,8 +133,8 @@ void Master::configure_mailbox(Slave& s, bool boot) {
     // An ESC ignores writes to start/length/control while the SM is enabled: disable it first
     // (it may still hold an earlier, refused configuration).
     require(transport_.fpwr_value<std::uint8_t>(s.station, static_cast<std::uint16_t>(base + reg::kSmActivateOffset), 0),
-            1, fmt::format("slave {}: FPWR SM{} disable", s.position, n));
-    require(transport_.fpwr(s.station, base, regs), 1, fmt::format("slave {}: FPWR SM{}", s.position, n));
+            1, n == 0 ? "FPWR SM0 disable" : "FPWR SM1 disable", s.position);
+    require(transport_.fpwr(s.station, base, regs), 1, n == 0 ? "FPWR SM0" : "FPWR SM1", s.position);
   }
 }
 
@@ -144,7 +151,7 @@ bool Master::step_to(Slave& s, AlState target) {
     configure_mailbox(s, target == AlState::Boot);
   }
   require(transport_.fpwr_value<std::uint16_t>(s.station, reg::kAlControl, static_cast<std::uint16_t>(target)), 1,
-          fmt::format("slave {}: FPWR AL control", s.position));
+          "FPWR AL control", s.position);
   const Nanos deadline = clock_.now() + options_.state_timeout;
   for (;;) {
     const AlStatus al = read_al_status(s.position);
