@@ -1,6 +1,7 @@
 // The `vdrive` command as a user meets it: the built binary run with good and bad arguments;
 // exit codes and one-line error messages (docs/cli.md). Serving tests need root (veth, TAP).
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <array>
@@ -92,6 +93,14 @@ TEST(Cli, BadLogLevelIsNamed) {
   const auto r = vdrive({"run", "--iface", "lo", "--drive", "a6b", "--log-level", "loud"});
   EXPECT_EQ(r.exit_code, 2);
   expect_one_error_line(r, "--log-level");
+}
+
+TEST(Cli, RtPriorityOutOfRangeIsNamed) {
+  for (const char* bad : {"0", "100", "high"}) {
+    const auto r = vdrive({"run", "--iface", "lo", "--drive", "a6b", "--rt-priority", bad});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    expect_one_error_line(r, "--rt-priority");
+  }
 }
 
 TEST(Cli, IfaceAndTapExcludeEachOther) {
@@ -213,6 +222,24 @@ TEST(CliServe, RemovedInterfaceEndsRunWithExitThree) {
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("vdrive: error: interface '" + gone + "' disappeared"), std::string::npos)
       << r.err;
+}
+
+TEST(CliServe, RtPriorityServesUnderSchedFifo) {
+  if (!test::running_as_root()) GTEST_SKIP() << "needs root (veth, SCHED_FIFO)";
+  if (!have_product("a6b")) GTEST_SKIP() << "profile a6b not in this build yet";
+  test::VethPair veth;
+  ASSERT_TRUE(veth.ok());
+  test::ChildProcess run(VDRIVE_BINARY,
+                         {"run", "--iface", veth.b(), "--drive", "a6b", "--rt-priority", "10"});
+  ASSERT_TRUE(run.wait_for_stderr("serving", 5s)) << run.finish().err;
+  EXPECT_EQ(::sched_getscheduler(run.pid()), SCHED_FIFO);
+  sched_param param{};
+  ASSERT_EQ(::sched_getparam(run.pid(), &param), 0);
+  EXPECT_EQ(param.sched_priority, 10);
+  link::RawSocketLink master(veth.a());
+  EXPECT_EQ(brd_working_counter(master), 1);
+  run.signal(SIGTERM);
+  EXPECT_EQ(run.finish(5s).exit_code, 0);
 }
 
 TEST(CliServe, TapModeServesTheMasterOnTheTapInterface) {

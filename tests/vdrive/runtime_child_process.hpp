@@ -54,6 +54,7 @@ public:
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   void signal(int sig) { ::kill(pid_, sig); }
 
   // Reads output until stderr contains `text` or `timeout` passes; true if found.

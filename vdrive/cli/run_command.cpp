@@ -7,6 +7,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "vdrive/network/network.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/runtime/realtime.hpp"
 #include "vdrive/runtime/stop_signal.hpp"
 
 namespace vdrive::cli {
@@ -30,6 +33,7 @@ struct RunOptions {
   std::string log_level = "info";
   std::string profile_dir;
   bool no_qdisc_bypass = false;
+  int rt_priority = 0;  // 0: normal scheduling
 };
 
 void check_products(const RunOptions& o) {
@@ -84,9 +88,20 @@ void run(const RunOptions& o) {
     throw CliError(o.profile_dir.empty() ? kExitFailure : kExitBadArguments, e.what());
   }
 
+  if (o.rt_priority != 0) {
+    const runtime::RealtimeResult rt = runtime::enter_realtime(o.rt_priority);
+    if (rt.error != 0) {
+      const bool denied = rt.error == EPERM || rt.error == EACCES;
+      throw CliError(denied ? kExitNotPermitted : kExitFailure,
+                     fmt::format("--rt-priority: {} failed: {}{}", rt.failed, std::strerror(rt.error),
+                                 denied ? " (needs root or CAP_SYS_NICE and CAP_IPC_LOCK)" : ""));
+    }
+  }
+
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
-  spdlog::info("serving {} drive(s) on {}: {} (hop delay {} ns); SIGINT/SIGTERM stops", o.drives.size(),
-               where, fmt::join(o.drives, ", "), o.hop_delay);
+  spdlog::info("serving {} drive(s) on {}: {} (hop delay {} ns{}); SIGINT/SIGTERM stops",
+               o.drives.size(), where, fmt::join(o.drives, ", "), o.hop_delay,
+               o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
   runtime::LoopCounters counters;
   try {
     runtime::serve(*network, *link, clock, stop, counters);
@@ -115,6 +130,9 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   cmd->add_option("--profile-dir", o->profile_dir,
                   "Load profiles from DIR/<id>/profile.yaml instead of the built-in ones");
+  cmd->add_option("--rt-priority", o->rt_priority,
+                  "Serve with SCHED_FIFO priority 1..99 and locked memory (default: normal)")
+      ->check(CLI::Range(1, 99));
   cmd->add_flag("--no-qdisc-bypass", o->no_qdisc_bypass,
                 "Send through the qdisc layer (so tc sees replies); default bypasses it");
   cmd->callback([o] {
