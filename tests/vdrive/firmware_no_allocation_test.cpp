@@ -26,6 +26,8 @@ void* operator new(std::size_t size) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+// For the other no-allocation tests in this binary (runtime_no_allocation_test.cpp).
+long test_vdrive_allocation_count() { return g_allocations.load(std::memory_order_relaxed); }
 
 namespace vdrive::firmware {
 namespace {
