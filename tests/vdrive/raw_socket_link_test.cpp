@@ -247,6 +247,26 @@ TEST_F(TapLinkTest, DeletedDeviceIsReported) {
   EXPECT_THROW(tap_->receive(buf, 200 * kMs), LinkError);
 }
 
+TEST_F(TapLinkTest, ASecondLinkOnTheSameDeviceIsRefused) {
+  try {
+    TapLink second(name_);
+    FAIL() << "two processes' worth of links on one single-queue TAP";
+  } catch (const LinkError& e) {
+    EXPECT_NE(std::string(e.what()).find("in use"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TapLinkErrors, ANameThatIsNotATapIsABadName) {
+  if (!test::running_as_root()) GTEST_SKIP() << "needs root (TAP)";
+  try {
+    TapLink tap("lo");
+    FAIL() << "attached to lo as a TAP";
+  } catch (const LinkError& e) {
+    EXPECT_EQ(e.kind(), LinkError::Kind::BadName);
+    EXPECT_STREQ(e.what(), "'lo' exists and is not a TAP device");
+  }
+}
+
 TEST_F(TapLinkTest, DeviceDisappearsWithTheLink) {
   tap_.reset();
   master_.reset();

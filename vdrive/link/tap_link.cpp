@@ -54,10 +54,13 @@ TapLink::TapLink(const std::string& interface_name)
                         "TAP devices need root or CAP_NET_ADMIN (TUNSETIFF '" + name_ + "': " +
                             std::strerror(err) + ")");
       }
-      if (err == EINVAL || err == EBUSY) {
-        // EINVAL: the name belongs to a device that is not a TAP (e.g. a veth or a TUN).
+      if (err == EINVAL) {  // the name belongs to a device that is not a TAP (a NIC, veth, TUN)
+        throw LinkError(LinkError::Kind::BadName,
+                        "'" + name_ + "' exists and is not a TAP device");
+      }
+      if (err == EBUSY) {
         throw LinkError(LinkError::Kind::System,
-                        "cannot attach to '" + name_ + "' as a TAP device: " + std::strerror(err));
+                        "TAP device '" + name_ + "' is in use by another process");
       }
       throw net::error_from_errno("TUNSETIFF", name_, err);
     }

@@ -18,7 +18,8 @@ namespace vdrive::link {
 
 class TapLink final : public Link {
 public:
-  // Throws LinkError (NotPermitted, BadName, System).
+  // Throws LinkError: NotPermitted, BadName (also: the name is a device that is not a TAP),
+  // System (e.g. the TAP is in use by another process).
   explicit TapLink(const std::string& interface_name);
   ~TapLink() override;
   TapLink(const TapLink&) = delete;
