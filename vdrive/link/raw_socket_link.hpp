@@ -3,7 +3,8 @@
 //
 // - Bound to one interface with protocol ETH_P_ETHERCAT (0x88A4): the kernel delivers only
 //   EtherCAT frames. VLAN-tagged EtherCAT is not supported (masters do not tag it in practice):
-//   it is not received, or, where the NIC strips VLAN tags in hardware, answered untagged.
+//   the kernel strips an 802.1Q tag before a protocol-bound socket sees the frame, without
+//   telling it, so such a frame arrives (and is answered) untagged; QinQ is not received.
 // - Promiscuous membership (PACKET_MR_PROMISC): masters send to broadcast or to any MAC, and a
 //   real ESC accepts every destination and source MAC, so do we.
 // - Our own transmissions (PACKET_OUTGOING) are never returned by receive().
