@@ -4,7 +4,8 @@
 // Input: records [flags(1) length(2, LE) frame(length)]. Flag bit 0 patches the EtherType to
 // 0x88A4 and the EtherCAT header to a type-1 PDU of the record's length, so most inputs reach the
 // datagram engine and the firmware; flags >> 1 is the virtual time (100 µs units) that passes
-// before the next frame, so timers (SII busy, watchdogs, SYNC) run too.
+// before the next frame, so timers (SII busy, watchdogs, SYNC) run too. One network is reused
+// across inputs, power-cycled before each, so every input starts from the same state.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -16,8 +17,11 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::array<std::string, 3> kLine = {"a6b", "ds5c1", "ds1000a"};
-  vdrive::VirtualClock clock;
-  vdrive::network::Network network(kLine, clock);
+  // Built once (profiles parse slowly); every input starts from a power cycle at time 0.
+  static vdrive::VirtualClock clock;
+  static vdrive::network::Network network(kLine, clock);
+  clock.set(0);
+  network.power_cycle(0);
   std::vector<std::uint8_t> frame;
   frame.reserve(1600);
   std::size_t at = 0;

@@ -87,6 +87,21 @@ TEST_F(NetworkTest, FirmwareAnswersAnAlControlRequestRightAfterTheFrame) {
   EXPECT_EQ(net_.esc(1).peek(esc::reg::kAlStatus) & esc::reg::kAlStateMask, esc::reg::kAlStateInit);
 }
 
+TEST_F(NetworkTest, PowerCycleForgetsTheErrorAndTheStationAddress) {
+  exchange(ethercat_frame(kApwr, 0, esc::reg::kAlControl, {0x04, 0}));             // refused: error flag
+  exchange(ethercat_frame(kApwr, 0, esc::reg::kStationAddress, {0x01, 0x10}));    // 0x1001
+  ASSERT_NE(net_.esc(0).peek(esc::reg::kAlStatus) & 0x10, 0);
+  ASSERT_EQ(net_.esc(0).peek(esc::reg::kStationAddress), 0x01);
+
+  net_.power_cycle(clock_.now());
+
+  EXPECT_EQ(net_.esc(0).peek(esc::reg::kAlStatus), esc::reg::kAlStateInit);
+  EXPECT_EQ(net_.esc(0).peek(esc::reg::kStationAddress), 0x00);
+  EXPECT_EQ(net_.esc(0).peek(esc::reg::kAlStatusCode), 0x00);
+  // The EEPROM survives: the identity still reads back through the ESC's SII interface.
+  EXPECT_EQ(net_.esc(0).peek(esc::reg::kType), net_.profile(0).esc.type);
+}
+
 TEST_F(NetworkTest, NonEtherCatFrameDoesNotComeBack) {
   EXPECT_TRUE(exchange(test::ethernet_frame(0x0800, std::vector<std::uint8_t>(46, 0))).empty());
 }

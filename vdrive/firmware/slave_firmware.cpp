@@ -5,29 +5,40 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <vector>
+#include <memory>
 
 #include "vdrive/firmware/al_state_machine.hpp"
+#include "vdrive/firmware/firmware_module.hpp"
 #include "vdrive/firmware/mailbox_sm_check.hpp"
 #include "vdrive/firmware/pdi.hpp"
+#include "vdrive/od/dictionary_cache.hpp"
+#include "vdrive/od/object_store.hpp"
 
 namespace vdrive::firmware {
 
 namespace {
-// AL events this firmware services; everything else stays masked so it does not raise the IRQ.
-// Later issues add the mailbox (SM0/SM1) and process-data (SM2, SYNC0) events.
-constexpr std::uint32_t kServicedEvents = al_event::kAlControl | al_event::kSmActivation;
+// AL events the state machine itself services; modules add theirs. Everything else stays masked
+// so it does not raise the IRQ.
+constexpr std::uint32_t kEsmEvents = al_event::kAlControl | al_event::kSmActivation;
 }  // namespace
 
 struct SlaveFirmware::Impl final : TransitionHooks {
   Impl(const profile::ProductProfile& p, esc::Esc& e)
-      : rules(p.mailbox_rules),
+      : profile(p),
+        dictionary(od::shared_dictionary(p)),
+        objects(*dictionary),
+        rules(p.mailbox_rules),
         codes(p.al_codes),
         pdi(e),
         esm(EsmTraits::of(p)),
         boot_rules(boot_mailbox_rules(p)),
         sm_count(std::clamp<int>(p.esc.sm_count, 2, kMaxSyncManagers)) {}
 
-  // Copies, not a reference: the firmware must not depend on the caller keeping the profile alive.
+  // A copy: the firmware must not depend on the caller keeping the profile alive.
+  profile::ProductProfile profile;
+  std::shared_ptr<const od::Dictionary> dictionary;
+  od::ObjectStore objects;
   profile::MailboxSmRules rules;
   profile::AlStatusCodes codes;
   Pdi pdi;
@@ -37,16 +48,31 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   bool mailbox_running = false;
   std::optional<std::uint16_t> device_id_switch;
   std::array<SmChannel, kMaxSyncManagers> sms{};  // scratch for SM reads; no allocation
+  FirmwareContext context{profile, pdi, objects, esm};
+  std::vector<std::unique_ptr<FirmwareModule>> modules;  // filled by install_modules()
+
+  // The firmware's parts, in service order. Each issue's module is added here.
+  void install_modules() {}
+
+  std::uint32_t serviced_events() const {
+    std::uint32_t events = kEsmEvents;
+    for (const auto& m : modules) events |= m->serviced_events();
+    return events;
+  }
 
   void power_on() {
     esm.reset();
     mailbox_running = false;
-    pdi.write_u32(reg::kAlEventMask, kServicedEvents);
+    pdi.write_u32(reg::kAlEventMask, serviced_events());
     publish();
   }
 
-  void on_irq() {
+  void on_irq(Nanos now) {
     const std::uint32_t events = pdi.read_u32(reg::kAlEventRequest);
+    for (auto& m : modules) {
+      m->on_events(events, now);
+      apply_fault(*m);
+    }
     if (events & al_event::kAlControl) {
       // Reading AL Control clears the event in the ESC.
       const AlControl control = AlControl::decode(pdi.read_u16(reg::kAlControl));
@@ -80,6 +106,27 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     return std::span<const SmChannel>(sms.data(), static_cast<std::size_t>(sm_count));
   }
 
+  // A module detected a failure on its own (watchdog, lost sync): fall back as it asks.
+  void apply_fault(FirmwareModule& m) {
+    FirmwareModule::Fault fault;
+    if (!m.take_fault(fault)) return;
+    esm.raise(fault.state, fault.code, *this);
+    publish();
+  }
+
+  void tick(Nanos now) {
+    for (auto& m : modules) {
+      if (m->next_deadline() <= now) m->tick(now);
+      apply_fault(*m);
+    }
+  }
+
+  Nanos next_deadline() const {
+    Nanos next = std::numeric_limits<Nanos>::max();
+    for (const auto& m : modules) next = std::min(next, m->next_deadline());
+    return next;
+  }
+
   // Code first, then status: a master that sees the error flag finds the code already there.
   void publish() {
     pdi.write_u16(reg::kAlStatusCode, esm.status_code_register());
@@ -97,32 +144,50 @@ struct SlaveFirmware::Impl final : TransitionHooks {
       return {codes.invalid_boot_mailbox_config, AlState::Init};
     return CheckResult::pass();
   }
-  // Issue 4 adds here: SM2/SM3 settings (0x001D/0x001E), PDO sizes (0x0024/0x0025), sync mode and
-  // cycle time (0x0028/0x0035), DC activation (0x0030), watchdog (0x001F), PLL lock (0x002D).
-  // Until then these transitions are accepted unchecked.
-  CheckResult check_preop_to_safeop() override { return CheckResult::pass(); }
-  // Issue 4: outputs valid / SM2 watchdog armed before Op.
-  CheckResult check_safeop_to_op() override { return CheckResult::pass(); }
+  // The modules check what they own: SM2/SM3 and PDO sizes, sync mode and cycle time, DC
+  // activation, watchdog, PLL lock (PreOp->SafeOp); outputs valid (SafeOp->Op).
+  CheckResult check_modules(AlState from, AlState to) {
+    for (auto& m : modules) {
+      const CheckResult r = m->check_transition(from, to);
+      if (!r.ok()) return r;
+    }
+    return CheckResult::pass();
+  }
+  CheckResult check_preop_to_safeop() override { return check_modules(AlState::PreOp, AlState::SafeOp); }
+  CheckResult check_safeop_to_op() override { return check_modules(AlState::SafeOp, AlState::Op); }
 
-  void entered(AlState /*from*/, AlState to) override {
+  void entered(AlState from, AlState to) override {
     // The mailbox runs in PreOp, SafeOp, Op and Boot. Going to Init stops it and forgets its
     // state; the ESC's SyncManagers are left as they are (the master reconfigures them).
     mailbox_running = to != AlState::Init;
+    for (auto& m : modules) m->entered(from, to, now_);
   }
+  Nanos now_ = 0;  // time of the event being serviced, for entered()
 };
 
 SlaveFirmware::SlaveFirmware(const profile::ProductProfile& profile, esc::Esc& esc)
-    : impl_(std::make_unique<Impl>(profile, esc)) {}
+    : impl_(std::make_unique<Impl>(profile, esc)) {
+  impl_->install_modules();
+}
 
 SlaveFirmware::~SlaveFirmware() = default;
 
-void SlaveFirmware::power_on(Nanos /*now*/) { impl_->power_on(); }
+void SlaveFirmware::power_on(Nanos now) {
+  impl_->now_ = now;
+  impl_->power_on();
+}
 
-void SlaveFirmware::on_irq(Nanos /*now*/) { impl_->on_irq(); }
+void SlaveFirmware::on_irq(Nanos now) {
+  impl_->now_ = now;
+  impl_->on_irq(now);
+}
 
-void SlaveFirmware::tick(Nanos /*now*/) {}
+void SlaveFirmware::tick(Nanos now) {
+  impl_->now_ = now;
+  impl_->tick(now);
+}
 
-Nanos SlaveFirmware::next_deadline() const { return std::numeric_limits<Nanos>::max(); }
+Nanos SlaveFirmware::next_deadline() const { return impl_->next_deadline(); }
 
 void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_switch = id; }
 

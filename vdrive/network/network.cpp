@@ -26,6 +26,13 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
 
 Network::~Network() = default;
 
+void Network::power_cycle(Nanos now) {
+  for (auto& slave : slaves_) {
+    slave->esc->reset();
+    slave->firmware->power_on(now);
+  }
+}
+
 bool Network::process_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) {
   const bool returns = segment_.process(ethernet_frame, now);
   // Even a destroyed frame may have changed ESC state before its error was found.

@@ -43,6 +43,9 @@ public:
   void tick(Nanos now);
   // Earliest time tick() has work to do, or INT64_MAX.
   Nanos next_deadline() const;
+  // Switches every drive off and on again: ESC power-on reset (the EEPROM keeps its contents),
+  // firmware restarts from Init with power-on values.
+  void power_cycle(Nanos now);
 
   std::size_t size() const { return slaves_.size(); }
   const profile::ProductProfile& profile(std::size_t i) const { return slaves_[i]->profile; }
