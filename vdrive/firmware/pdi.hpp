@@ -6,6 +6,7 @@
 // No allocation, no locks: safe on the frame path.
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "esc_model/esc.hpp"
 #include "esc_model/registers.hpp"
@@ -50,6 +51,13 @@ public:
     return static_cast<std::uint32_t>(b[0]) | (static_cast<std::uint32_t>(b[1]) << 8) |
            (static_cast<std::uint32_t>(b[2]) << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
   }
+  void write_u8(std::uint16_t address, std::uint8_t value) {
+    const std::array<std::uint8_t, 1> b{value};
+    esc_.pdi_write(address, b);
+  }
+  // Burst access (mailbox buffers): one PDI access, so SyncManager side effects happen once.
+  void read(std::uint16_t address, std::span<std::uint8_t> out) { esc_.pdi_read(address, out); }
+  void write(std::uint16_t address, std::span<const std::uint8_t> in) { esc_.pdi_write(address, in); }
   void write_u16(std::uint16_t address, std::uint16_t value) {
     const std::array<std::uint8_t, 2> b{static_cast<std::uint8_t>(value),
                                         static_cast<std::uint8_t>(value >> 8)};
