@@ -1,7 +1,7 @@
 #pragma once
 // A product, as data: everything that makes a slave an A6B, a DS5C1 or a DS1000A-EC rather than
 // a generic ESC. Loaded from profiles/<id>/profile.yaml (see profile_loader.hpp). The object
-// dictionary comes from profiles/<id>/objects.yaml (later issue).
+// dictionary comes from profiles/<id>/objects.yaml; alarms and motors from alarms.yaml and motors.yaml.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -101,6 +101,180 @@ struct PdoSpec {
   std::vector<PdoEntrySpec> entries;
 };
 
+// --- Synchronisation (1C32h/1C33h, ETG.1020 / ETG.6010) -------------------------------------------
+
+// Sync types as 1C32h-01h/1C33h-01h hold them (ETG.1020): the product's accepted values are listed
+// per object in SyncObjectSpec::accepted_sync_types.
+enum class SyncType : std::uint16_t {
+  FreeRun = 0x00,         // local timer, no synchronisation
+  Sm2Event = 0x01,        // 1C32h: synchronous with SM2 event
+  DcSync0 = 0x02,         // synchronous with SYNC0
+  DcSync1 = 0x03,         // synchronous with SYNC1
+  Sm2EventInputs = 0x22,  // 1C33h: inputs latched synchronous with the SM2 event
+};
+
+// The values one of 1C32h (outputs, SM2) or 1C33h (inputs, SM3) holds after power-up and what the
+// product accepts there. Times in ns. A value of 0 where the manual says "not supported" means the
+// subindex reads 0; `supported` flags say which optional subindexes exist at all.
+struct SyncObjectSpec {
+  std::uint16_t default_sync_type = 0;                // 01h after power-up
+  std::vector<std::uint16_t> accepted_sync_types;     // 01h values a write / PS check accepts
+  std::uint32_t default_cycle_time_ns = 0;            // 02h after power-up
+  bool cycle_time_writable = true;                    // 02h rw (else ro, copied from 1C32h/09A0h)
+  std::uint32_t default_shift_time_ns = 0;            // 03h after power-up
+  bool shift_time_writable = false;                   // 03h rw
+  std::uint16_t supported_sync_types = 0;             // 04h (bit0 free run, bit1 SM, bits4-2 DC, bits6-5 shift)
+  std::uint32_t min_cycle_time_ns = 0;                // 05h
+  std::uint32_t calc_and_copy_time_ns = 0;            // 06h
+  std::uint32_t delay_time_ns = 0;                    // 09h
+  bool error_counters = false;                        // 0Bh-0Eh and 20h are real counters (else read 0)
+};
+
+// Shift-time rule for 1C33h-03h (input latch after SYNC0/SM2): 0 = no shift accepted.
+struct ShiftTimeRule {
+  std::uint32_t step_ns = 0;                          // value must be a multiple of this (0 = any)
+  std::uint32_t max_ns = 0;                           // largest accepted value
+  bool below_cycle_time = true;                       // must be < 1C32h-02h
+  std::vector<std::uint32_t> cycle_times_ns;          // cycles at which a shift is accepted (empty = all)
+};
+
+// Process-data (SM2) watchdog rule checked at PreOp->SafeOp when the watchdog is enabled
+// (SM2 control bit 6): timeout = (0400h + 2) * 40 ns * 0420h must be at least
+// max(min_cycles * cycle time, min_ns); min_free_run_ns replaces it in free run.
+struct WatchdogRule {
+  std::uint8_t min_cycles = 0;                        // e.g. A6B Err81.4: 2 x cycle (0 = no check)
+  std::uint32_t min_free_run_ns = 0;                  // e.g. A6B Err81.4: 2 ms in free run
+};
+
+// A drive mode that needs a longer cycle than the product's minimum (e.g. A6B pp/pv/tq >= 250 us).
+struct ModeCycleLimit {
+  std::int8_t mode = 0;                               // 6060h value
+  std::uint32_t min_cycle_ns = 0;
+};
+
+struct SyncSpec {
+  bool free_run = false;                              // sync modes the product runs in
+  bool sm2_event = false;
+  bool dc_sync0 = false;
+  bool dc_sync1 = false;
+  // Cycle times accepted in SM2/DC (1C32h-02h, 09A0h), ascending. When `cycle_step_ns` != 0 the
+  // list is empty and any multiple of the step in [cycle_min_ns, cycle_max_ns] is accepted.
+  std::vector<std::uint32_t> cycle_times_ns;
+  std::uint32_t cycle_step_ns = 0;
+  std::uint32_t cycle_min_ns = 0, cycle_max_ns = 0;   // always set: the accepted range
+  std::uint32_t free_run_min_interval_ns = 0;         // fastest PDO rate the product takes in free run (0 = not stated)
+  bool cycle_must_equal_sync0 = true;                 // DC: 09A0h must equal 1C32h-02h
+  std::vector<std::uint8_t> accepted_dc_activation;   // 0981h values accepted at PS (e.g. 0x00, 0x03)
+  std::vector<ModeCycleLimit> mode_min_cycle;         // per-mode cycle minimums
+  SyncObjectSpec sm2;                                 // 1C32h
+  SyncObjectSpec sm3;                                 // 1C33h
+  ShiftTimeRule input_shift;                          // 1C33h-03h
+  ShiftTimeRule output_shift;                         // 1C32h-03h
+  WatchdogRule watchdog;
+  std::uint32_t pll_lock_timeout_ns = 0;              // sync must lock within this after PS (0 = not stated)
+  std::uint8_t missed_sync_threshold = 0;             // consecutive SYNC0/IRQ misses before a sync error (0 = never)
+};
+
+// --- PDO mapping rules ---------------------------------------------------------------------------
+
+// One mapping object (16xxh/1Axxh) the product has, default mapping or not.
+struct PdoObjectRule {
+  std::uint16_t index = 0;
+  bool fixed = false;                                 // contents cannot be changed (1600h.. writes refused)
+  std::uint8_t max_entries = 0;                       // subindexes 01h..max_entries exist
+};
+
+// A set of ESM states: the bit is the AL state code for Init (1), PreOp (2), SafeOp (4), Op (8), so
+// `set & al_state` tests those four; Boot (AL code 3) is 0x10.
+using EsmStateSet = std::uint8_t;
+inline constexpr EsmStateSet kStateInit = 0x01, kStatePreOp = 0x02, kStateSafeOp = 0x04, kStateOp = 0x08,
+                             kStateBoot = 0x10;
+
+struct PdoRules {
+  std::vector<PdoObjectRule> rx_objects;              // 1600h.. in index order
+  std::vector<PdoObjectRule> tx_objects;              // 1A00h.. in index order
+  std::uint8_t max_rx_assigned = 0;                   // 1C12h-00h maximum
+  std::uint8_t max_tx_assigned = 0;                   // 1C13h-00h maximum
+  std::uint16_t max_rx_bytes = 0;                     // total RxPDO size limit (bytes, all assigned PDOs)
+  std::uint16_t max_tx_bytes = 0;                     // total TxPDO size limit
+  bool assign_writable = true;                        // 1C12h/1C13h can be written at all
+  bool mapping_writable = true;                       // free mapping (16xxh/1Axxh not all fixed)
+  EsmStateSet writable_states = kStatePreOp;          // states in which 1C1xh/16xxh/1Axxh may change
+  bool sub0_must_be_zero = true;                      // subindexes >= 1 writable only while sub 0 = 0
+  std::uint32_t wrong_state_abort = 0x06010003;       // SDO abort for a write outside writable_states
+  bool checked_at_safeop = true;                      // size/mappability checked at PreOp->SafeOp (not on SDO write)
+  bool byte_aligned_total = false;                    // total size must be whole bytes (padding rule)
+};
+
+// --- Drive modes, homing, touch probe ------------------------------------------------------------
+
+struct ModesSpec {
+  std::uint32_t supported_drive_modes = 0;            // 6502h value
+  std::vector<std::int8_t> modes;                     // 6060h values accepted (besides 0 = no mode)
+  std::int8_t default_mode = 0;                       // 6060h after power-up
+};
+
+struct HomingSpec {
+  std::vector<std::int8_t> methods;                   // 6098h values, in 60E3h subindex order
+  std::int8_t default_method = 0;                     // 6098h after power-up
+  bool methods_in_60e3 = true;                        // false: 60E3h does not exist
+};
+
+// A trigger source selectable for a touch-probe channel (60B8h bit 2/10, or 60D0h where it exists).
+struct TouchProbeSource {
+  std::uint8_t channel = 1;                           // 1 or 2
+  std::uint8_t select = 0;                            // the 60B8h trigger-select bit value (0 / 1), or 60D0h value
+  std::string name;                                   // e.g. "EXT1 (SI5)", "Z phase"
+};
+
+struct TouchProbeSpec {
+  std::uint8_t channels = 0;                          // 0 = no touch probe
+  bool rising_edge = false;
+  bool falling_edge = false;
+  bool both_edges_at_once = false;                    // rising and falling armed together
+  bool continuous = false;                            // 60B8h bit1 = 1 (continuous) supported
+  std::vector<TouchProbeSource> sources;
+};
+
+// --- Alarms and motors (profiles/<id>/alarms.yaml, motors.yaml) ----------------------------------
+
+// What the drive does to the motor when the alarm occurs.
+enum class AlarmReaction : std::uint8_t {
+  None,            // no motor reaction (communication alarm only; PDS unchanged)
+  ImmediateStop,   // immediate stop (torque-limited stop / dynamic brake)
+  Deceleration,    // decelerate to stop, then disable
+  FreeRun,         // power stage off at once, motor coasts
+};
+
+struct AlarmSpec {
+  std::string code;                                   // vendor display code as printed: "80.4", "E-804", "FF01h"
+  std::string name;                                   // original-language name as printed
+  std::string name_en;                                // English
+  std::uint16_t error_code = 0;                       // 603Fh value while active
+  std::uint16_t emergency_code = 0;                   // error code sent in the EMCY message
+  bool clearable = true;                              // can be reset by fault reset / alarm clear
+  AlarmReaction reaction = AlarmReaction::None;
+  std::uint16_t al_status_code = 0;                   // 0 = no AL status code
+  bool history = true;                                // kept in the alarm history (10F3h / vendor list)
+  bool warning = false;                               // a warning, not an alarm (no Fault state)
+  std::string source;                                 // manual line(s), e.g. "L32567"
+};
+
+// A motor of the product's catalogue. Absent values are 0 (the manual does not give them).
+struct MotorSpec {
+  std::string model;
+  std::string source;                                 // manual line(s)
+  double rated_power_w = 0;
+  double rated_torque_nm = 0;                         // continuous (servo) or holding torque (stepper)
+  double peak_torque_nm = 0;
+  double rated_speed_rpm = 0;
+  double max_speed_rpm = 0;
+  double rated_current_a = 0;                         // rms (servo) / per phase (stepper)
+  double torque_constant_nm_per_a = 0;
+  double rotor_inertia_kgm2 = 0;                      // SI units (manuals print x10^-4 kg m^2 or g cm^2)
+  std::uint32_t encoder_counts_per_rev = 0;
+};
+
 struct ProductProfile {
   std::string id;                    // "a6b", "ds5c1", "ds1000a"
   std::string title;                 // human name, e.g. "Panasonic MINAS-A6B"
@@ -121,6 +295,15 @@ struct ProductProfile {
   // Default PDO mappings (factory values), in object order. Empty when the manual gives none.
   std::vector<PdoSpec> rx_pdos;
   std::vector<PdoSpec> tx_pdos;
+  // Issue 3 item 2: the rest of the product (profile.yaml keys sync, pdo_rules, modes, homing,
+  // touch_probe; alarms.yaml; motors.yaml).
+  SyncSpec sync;
+  PdoRules pdo_rules;
+  ModesSpec modes;
+  HomingSpec homing;
+  TouchProbeSpec touch_probe;
+  std::vector<AlarmSpec> alarms;                      // profiles/<id>/alarms.yaml, in manual order
+  std::vector<MotorSpec> motors;                      // profiles/<id>/motors.yaml (may be empty)
 };
 
 }  // namespace vdrive::profile
