@@ -58,6 +58,8 @@ void Master::reset_line() {
 
 std::size_t Master::scan() {
   slaves_.clear();
+  sdos_.clear();
+  mailboxes_.clear();
   std::array<std::uint8_t, 2> type{};
   const Wkc count = transport_.brd(reg::kType, type);
   if (!count) throw MasterError("no reply to BRD 0x0000: is the interface up and a slave connected?");
@@ -83,6 +85,8 @@ std::size_t Master::scan() {
     s.fmmu_count = esc[4];
     s.sm_count = esc[5];
     s.dl_status = transport_.fprd_value<std::uint16_t>(s.station, reg::kDlStatus).value_or(0);
+    const auto features = transport_.fprd_value<std::uint16_t>(s.station, reg::kFeatures).value_or(0);
+    s.dc_supported = (features & reg::kFeatureDc) != 0;
   }
 
   for (Slave& s : slaves_) {
@@ -99,7 +103,21 @@ std::size_t Master::scan() {
                                 s.info.mailbox_tx_size ? reg::kSmActivateEnable : std::uint8_t{0}};
     read_al_status(s.position);
   }
+  mailboxes_.resize(slaves_.size());
+  sdos_.resize(slaves_.size());
   return slaves_.size();
+}
+
+SdoClient& Master::sdo(std::size_t index) {
+  Slave& s = slaves_.at(index);
+  if (!sdos_[index]) {
+    const MailboxConfig config{s.station, s.mailbox_sm[0].start, s.mailbox_sm[0].length, s.mailbox_sm[1].start,
+                               s.mailbox_sm[1].length};
+    mailboxes_[index] = std::make_unique<MailboxClient>(transport_, config, mailbox_timeout_);
+    mailboxes_[index]->flush();  // a reply left over from an earlier master is not ours
+    sdos_[index] = std::make_unique<SdoClient>(*mailboxes_[index]);
+  }
+  return *sdos_[index];
 }
 
 AlStatus Master::read_al_status(std::size_t index) {

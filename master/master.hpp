@@ -18,6 +18,9 @@
 
 #include "common/clock.hpp"
 #include "master/al_state.hpp"
+#include "master/coe.hpp"
+#include "master/mailbox.hpp"
+#include "master/process_data.hpp"
 #include "master/slave_info.hpp"
 #include "master/transport.hpp"
 #include "vdrive/link/link.hpp"
@@ -51,6 +54,10 @@ struct Slave {
   // them before request_state() (e.g. to test a slave's mailbox checks).
   std::array<SmSetting, 2> mailbox_sm{};
   AlStatus al;                         // last AL status read
+  SlaveProcessData process_data;       // filled by configure_process_data()
+  bool dc_supported = false;           // ESC feature 0x0008 bit 2, read at scan()
+  std::int64_t dc_delay = 0;           // propagation delay from the reference clock (ns), by configure_dc()
+  std::int64_t dc_offset = 0;          // system time offset written to 0x0920
   AlState state() const { return static_cast<AlState>(al.state); }
 };
 
@@ -89,7 +96,14 @@ public:
   // Acknowledges an error indication: AL control = current state | 0x10.
   bool acknowledge_error(std::size_t slave);
 
+  // The CoE client of a slave; its mailbox must be running (Pre-Op or higher). Created on first
+  // use with SM0/SM1 as configured (mailbox_sm). Throws MailboxError for a slave without mailbox.
+  SdoClient& sdo(std::size_t slave);
+  // Mailbox reply timeout for clients created from now on.
+  void set_mailbox_timeout(Nanos timeout) { mailbox_timeout_ = timeout; }
+
   Transport& transport() { return transport_; }
+  const Clock& clock() const { return clock_; }
 
 private:
   bool step_to(Slave& slave, AlState target);
@@ -102,6 +116,9 @@ private:
   MasterOptions options_;
   Transport transport_;
   std::vector<Slave> slaves_;
+  Nanos mailbox_timeout_ = 1'000'000'000;
+  std::vector<std::unique_ptr<MailboxClient>> mailboxes_;
+  std::vector<std::unique_ptr<SdoClient>> sdos_;
 };
 
 // One line for people: position, station address, identity, name, AL state and, after a refused

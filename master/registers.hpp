@@ -13,6 +13,8 @@ constexpr std::uint16_t kSmCount = 0x0005;          // 1 byte
 constexpr std::uint16_t kRamSize = 0x0006;          // 1 byte, KiB
 constexpr std::uint16_t kPortDescriptor = 0x0007;   // 1 byte
 constexpr std::uint16_t kFeatures = 0x0008;         // 2 bytes
+constexpr std::uint16_t kFeatureDc = 0x0004;        // distributed clocks available
+constexpr std::uint16_t kFeatureDc64 = 0x0008;      // 64-bit system time
 
 // ---- station address ----------------------------------------------------------------------
 constexpr std::uint16_t kStationAddress = 0x0010;   // configured station address (2)
@@ -23,6 +25,7 @@ constexpr std::uint16_t kDlControl = 0x0100;        // 4 bytes
 constexpr std::uint16_t kDlControlLoop = 0x0101;    // byte 1: loop control of ports 0-3
 constexpr std::uint16_t kDlControlAlias = 0x0103;   // byte 3 bit 0: station alias enable
 constexpr std::uint16_t kDlStatus = 0x0110;         // 2 bytes
+constexpr std::uint16_t kDlStatusPort1Comm = 0x0800; // communication established on port 1
 
 // ---- application layer -------------------------------------------------------------------
 constexpr std::uint16_t kAlControl = 0x0120;        // 2 bytes
@@ -63,9 +66,21 @@ constexpr std::uint16_t kSmActivateOffset = 6;         // activate byte within a
 constexpr std::uint8_t kSmControlMailboxWrite = 0x26;  // mailbox, ECAT writes, PDI IRQ on
 constexpr std::uint8_t kSmControlMailboxRead = 0x22;   // mailbox, ECAT reads, PDI IRQ on
 constexpr std::uint8_t kSmActivateEnable = 0x01;
+constexpr std::uint8_t kFmmuTypeRead = 0x01;           // FMMU type: ECAT reads (inputs)
+constexpr std::uint8_t kFmmuTypeWrite = 0x02;          // FMMU type: ECAT writes (outputs)
 
 // ---- distributed clocks ------------------------------------------------------------------
+constexpr std::uint16_t kDcReceiveTimes = 0x0900;   // 4 x 4 bytes: port 0-3; a write latches them all
 constexpr std::uint16_t kDcSystemTime = 0x0910;     // 8 bytes
+constexpr std::uint16_t kDcReceiveTimeUnit = 0x0918;  // 8 bytes: local time of port 0 receive
+constexpr std::uint16_t kDcSystemTimeOffset = 0x0920; // 8 bytes
+constexpr std::uint16_t kDcSystemTimeDelay = 0x0928;  // 4 bytes
+constexpr std::uint16_t kDcSystemTimeDiff = 0x092C;   // 4 bytes: bit 31 sign, 30-0 magnitude
+constexpr std::uint16_t kDcCyclicUnitControl = 0x0980;
+constexpr std::uint16_t kDcStartTime = 0x0990;        // 8 bytes: first SYNC0 (system time)
+constexpr std::uint16_t kDcSync0Cycle = 0x09A0;       // 4 bytes
+constexpr std::uint8_t kDcSyncActivateCyclic = 0x01;  // 0x0981 bit 0
+constexpr std::uint8_t kDcSyncActivateSync0 = 0x02;   // 0x0981 bit 1
 constexpr std::uint16_t kDcSpeedCounterStart = 0x0930;
 constexpr std::uint16_t kDcTimeFilter = 0x0934;
 constexpr std::uint16_t kDcSyncActivation = 0x0981;

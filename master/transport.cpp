@@ -10,29 +10,43 @@ Transport::Transport(link::Link& link, const Clock& clock, TransportOptions opti
 
 bool Transport::transceive(Frame& frame) {
   for (int attempt = 0; attempt <= options_.retries; ++attempt) {
-    if (!link_.send(frame.bytes())) {
-      ++timeouts_;
-      continue;
-    }
-    ++frames_sent_;
-    const Nanos deadline = clock_.now() + options_.reply_timeout;
-    for (;;) {
-      const Nanos left = deadline - clock_.now();
-      if (left <= 0) break;
-      const Nanos before = clock_.now();
-      const std::size_t n = link_.receive(rx_, left);
-      if (n == 0) {
-        // Nothing arrived. Under a virtual clock that the link did not advance, nothing will:
-        // end this attempt instead of spinning.
-        if (clock_.now() == before) break;
-        continue;
-      }
-      // Anything else (a late reply to an earlier attempt, other masters' traffic) is skipped.
-      if (frame.accept_reply({rx_.data(), n})) return true;
-    }
-    ++timeouts_;
+    if (exchange(frame, options_.reply_timeout)) return true;
   }
   return false;
+}
+
+bool Transport::exchange(Frame& frame, Nanos timeout) {
+  if (!link_.send(frame.bytes())) {
+    ++timeouts_;
+    return false;
+  }
+  ++frames_sent_;
+  const Nanos deadline = clock_.now() + timeout;
+  for (;;) {
+    const Nanos left = deadline - clock_.now();
+    if (left <= 0) break;
+    const Nanos before = clock_.now();
+    const std::size_t n = link_.receive(rx_, left);
+    if (n == 0) {
+      // Nothing arrived. Under a virtual clock that the link did not advance, nothing will:
+      // end this attempt instead of spinning.
+      if (clock_.now() == before) break;
+      continue;
+    }
+    // Anything else (a late reply to an earlier attempt, other masters' traffic) is skipped.
+    if (frame.accept_reply({rx_.data(), n})) return true;
+  }
+  ++timeouts_;
+  return false;
+}
+
+void Transport::idle_until(Nanos deadline) {
+  for (;;) {
+    const Nanos left = deadline - clock_.now();
+    if (left <= 0) return;
+    const Nanos before = clock_.now();
+    if (link_.receive(rx_, left) == 0 && clock_.now() == before) return;  // a clock nobody moves
+  }
 }
 
 Wkc Transport::single(Command cmd, std::uint32_t address, std::span<std::uint8_t> inout, bool send_data) {

@@ -28,6 +28,12 @@ public:
   // Sends `frame` and waits for its reply; on success the frame holds the reply (data(), wkc()).
   // Returns false when all attempts timed out or the link refused the frame.
   bool transceive(Frame& frame);
+  // One attempt only, waiting at most `timeout` (cyclic process data: a lost frame is a wrong
+  // working counter for that cycle, never a retry).
+  bool exchange(Frame& frame, Nanos timeout);
+  // Lets time pass until `deadline`, discarding whatever arrives (late replies). On a real link
+  // this sleeps in the socket wait; under a virtual clock the link moves time.
+  void idle_until(Nanos deadline);
   // Next datagram index (wraps at 256).
   std::uint8_t next_index() { return index_++; }
 
