@@ -215,15 +215,17 @@ struct ModesSpec {
 };
 
 struct HomingSpec {
-  std::vector<std::int8_t> methods;                   // 6098h values, in 60E3h subindex order
+  std::vector<std::int8_t> methods;                   // 6098h values the drive accepts
+  std::vector<std::int8_t> listed;                    // 60E3h subindexes 01h.. in order (may omit vendor methods)
   std::int8_t default_method = 0;                     // 6098h after power-up
-  bool methods_in_60e3 = true;                        // false: 60E3h does not exist
 };
 
-// A trigger source selectable for a touch-probe channel (60B8h bit 2/10, or 60D0h where it exists).
+// A trigger source selectable for a touch-probe channel.
 struct TouchProbeSource {
   std::uint8_t channel = 1;                           // 1 or 2
-  std::uint8_t select = 0;                            // the 60B8h trigger-select bit value (0 / 1), or 60D0h value
+  std::uint8_t trigger_select = 0;                    // value of the channel's 60B8h trigger-select bits
+                                                      // (bit 2 / 10; DS1000A-EC bits 3-2 / 11-10)
+  std::int16_t source = 0;                            // 60D0h value when trigger_select picks 60D0h, else 0
   std::string name;                                   // e.g. "EXT1 (SI5)", "Z phase"
 };
 
