@@ -84,11 +84,6 @@ public:
     return sm;
   }
 
-  // Block access (SyncManager buffers: a 3-buffer SM is released only when its whole length is
-  // read, and handed over only when its whole length is written).
-  void read(std::uint16_t address, std::span<std::uint8_t> out) { esc_.pdi_read(address, out); }
-  void write(std::uint16_t address, std::span<const std::uint8_t> in) { esc_.pdi_write(address, in); }
-
   std::uint32_t irq() const { return esc_.pdi_irq(); }
 
 private:
