@@ -1,0 +1,202 @@
+#include "vdrive/firmware/pdo/process_data_module.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include "vdrive/firmware/pdi.hpp"
+#include "vdrive/firmware/pdo/pdo_write_rules.hpp"
+#include "vdrive/firmware/pdo/process_data_sm_check.hpp"
+#include "vdrive/firmware/pdo/watchdog_setting_check.hpp"
+#include "vdrive/od/object_store.hpp"
+
+namespace vdrive::firmware::pdo {
+
+namespace {
+
+constexpr std::uint32_t kSm2Event = 1u << (al_event::kSmShift + kOutputsSm);
+constexpr std::uint32_t kSm3Event = 1u << (al_event::kSmShift + kInputsSm);
+// ESC DC activation register (0x0981): bit0 cyclic unit, bit1 SYNC0. The sync module owns its
+// rules; the watchdog check only needs to know whether the slave runs on SYNC0.
+constexpr std::uint16_t kDcActivation = 0x0981;
+constexpr std::uint8_t kDcSync0Active = 0x03;
+
+// ETG.1000.6 codes, used when a product names none for a situation.
+constexpr std::uint16_t kEtgWatchdog = 0x001B, kEtgOutputConfig = 0x001D,
+                        kEtgInputConfig = 0x001E, kEtgWatchdogConfig = 0x001F,
+                        kEtgInputMapping = 0x0024, kEtgOutputMapping = 0x0025;
+
+}  // namespace
+
+ProcessDataModule::ProcessDataModule(FirmwareContext& context)
+    : ctx_(context),
+      limits_(limits_for(context.profile)),
+      watchdog_limits_(watchdog_limits_for(context.profile)),
+      codes_(context.profile.al_codes),
+      ram_end_(reg::kRegisterEnd + 1024u * context.profile.esc.ram_kib),
+      sm_count_(std::clamp<int>(context.profile.esc.sm_count, 0, kMaxSyncManagers)) {
+  apply_default_assignment();
+  install_pdo_write_rules(ctx_.objects, ctx_.esm, limits_);
+}
+
+// 1C12h/1C13h have no default in the A6B and DS5C1 dictionaries (the manuals only imply it,
+// A6B L5181): the factory assignment is the profile's default PDOs (SII/ESI, rx_pdos/tx_pdos with
+// their SyncManager).
+void ProcessDataModule::apply_default_assignment() {
+  const auto assign = [this](std::uint16_t index, const std::vector<profile::PdoSpec>& pdos,
+                             std::uint8_t sm) {
+    const od::EntryDesc* count = ctx_.objects.dictionary().find(index, 0);
+    if (count == nullptr || read_unsigned(ctx_.objects, index, 0) != 0) return;
+    std::uint8_t n = 0;
+    for (const profile::PdoSpec& pdo : pdos) {
+      if (pdo.sync_manager != sm) continue;
+      const od::EntryDesc* slot = ctx_.objects.dictionary().find(index, static_cast<std::uint8_t>(n + 1));
+      if (slot == nullptr) break;
+      std::span<std::uint8_t> bytes = ctx_.objects.raw(*slot);
+      for (std::size_t i = 0; i < bytes.size(); ++i) {
+        bytes[i] = static_cast<std::uint8_t>(i < 2 ? pdo.index >> (8 * i) : 0);
+      }
+      ++n;
+    }
+    std::span<std::uint8_t> n_bytes = ctx_.objects.raw(*count);
+    if (!n_bytes.empty()) n_bytes[0] = n;
+  };
+  assign(kRxAssign, ctx_.profile.rx_pdos, kOutputsSm);
+  assign(kTxAssign, ctx_.profile.tx_pdos, kInputsSm);
+}
+
+std::uint32_t ProcessDataModule::serviced_events() const {
+  return kSm2Event | kSm3Event | al_event::kPdWatchdog | al_event::kSmActivation;
+}
+
+void ProcessDataModule::on_events(std::uint32_t events, Nanos now) {
+  if (events & al_event::kPdWatchdog) on_watchdog();
+  if ((events & al_event::kSmActivation) && running_) check_sms_while_running();
+  if (!running_) return;
+  if (events & kSm2Event) {
+    if (cycle_by_sync_) {
+      read_outputs();  // release the buffer; the objects are updated at SYNC0
+    } else {
+      exchange_outputs(now);
+      produce_inputs(now);
+    }
+  }
+  if ((events & kSm3Event) && tx_plan_.bytes() > 0) {
+    if (cycle_by_sync_) {
+      write_inputs();  // hand out the inputs latched at the last sync point again
+    } else {
+      produce_inputs(now);
+    }
+  }
+}
+
+// ---- cyclic path -----------------------------------------------------------------------------
+
+void ProcessDataModule::read_outputs() {
+  const std::uint16_t n = rx_plan_.bytes();
+  if (n == 0) return;
+  ctx_.pdi.read(sm2_start_, std::span<std::uint8_t>(rx_image_.data(), n));
+}
+
+void ProcessDataModule::write_inputs() {
+  const std::uint16_t n = tx_plan_.bytes();
+  if (n == 0) return;
+  ctx_.pdi.write(sm3_start_, std::span<const std::uint8_t>(tx_image_.data(), n));
+}
+
+void ProcessDataModule::exchange_outputs(Nanos /*now*/) {
+  if (!running_) return;
+  read_outputs();
+  if (ctx_.esm.state() != AlState::Op || rx_plan_.bytes() == 0) return;
+  rx_plan_.scatter(std::span<const std::uint8_t>(rx_image_.data(), rx_plan_.bytes()));
+  outputs_valid_ = true;
+}
+
+void ProcessDataModule::produce_inputs(Nanos /*now*/) {
+  if (!running_ || tx_plan_.bytes() == 0) return;
+  tx_plan_.gather(std::span<std::uint8_t>(tx_image_.data(), tx_plan_.bytes()));
+  write_inputs();
+}
+
+// A6B Err80.4 (L33098-L33134), DS5C1 E-804 (L7117): the SM2 watchdog expired -> SafeOp with
+// AL 001Bh. Only Op uses the outputs, so only Op reacts (A6B: "effectively Op-only", L33132).
+// Reading 0440h clears the event; the master recovers with Error Ind Ack and a new Op request.
+void ProcessDataModule::on_watchdog() {
+  const std::uint8_t status = ctx_.pdi.read_u8(reg::kWatchdogStatusProcessData);
+  if ((status & 0x01) != 0) return;  // running again: retriggered before we looked
+  if (ctx_.esm.state() != AlState::Op) return;
+  outputs_valid_ = false;
+  raise_fault(code_or(codes_.sync_watchdog, kEtgWatchdog), AlState::SafeOp);
+}
+
+// A6B Err81.7 is also detected in SafeOp and Op (L33546-L33624): the master changed SM2/SM3.
+void ProcessDataModule::check_sms_while_running() {
+  for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
+  const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));
+  if (check_process_data_sm(sms, kOutputsSm, rx_plan_.bytes(), ram_end_) != PdSmFault::Ok) {
+    raise_fault(code_or(codes_.invalid_output_config, kEtgOutputConfig), AlState::PreOp);
+  } else if (check_process_data_sm(sms, kInputsSm, tx_plan_.bytes(), ram_end_) != PdSmFault::Ok) {
+    raise_fault(code_or(codes_.invalid_input_config, kEtgInputConfig), AlState::PreOp);
+  }
+}
+
+// ---- transitions -----------------------------------------------------------------------------
+
+CheckResult ProcessDataModule::check_transition(AlState from, AlState to) {
+  if (from == AlState::PreOp && to == AlState::SafeOp) return check_preop_to_safeop();
+  return CheckResult::pass();
+}
+
+// Order: mapping (A6B Err85.0/85.1), SyncManagers (Err81.7), watchdog (Err81.4). Every failure
+// leaves the slave in PreOp (A6B 8-1 table; DS5C1 E-817/E-85x).
+CheckResult ProcessDataModule::check_preop_to_safeop() {
+  resolve(ctx_.objects, Direction::Tx, limits_.tx, tx_map_);
+  if (!tx_map_.ok()) return {code_or(codes_.invalid_input_mapping, kEtgInputMapping), AlState::PreOp};
+  resolve(ctx_.objects, Direction::Rx, limits_.rx, rx_map_);
+  if (!rx_map_.ok()) return {code_or(codes_.invalid_output_mapping, kEtgOutputMapping), AlState::PreOp};
+
+  for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
+  const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));
+  if (check_process_data_sm(sms, kOutputsSm, rx_map_.bytes(), ram_end_) != PdSmFault::Ok) {
+    return {code_or(codes_.invalid_output_config, kEtgOutputConfig), AlState::PreOp};
+  }
+  if (check_process_data_sm(sms, kInputsSm, tx_map_.bytes(), ram_end_) != PdSmFault::Ok) {
+    return {code_or(codes_.invalid_input_config, kEtgInputConfig), AlState::PreOp};
+  }
+
+  WatchdogSetting wd;
+  const std::uint16_t wd_time = ctx_.pdi.read_u16(reg::kWatchdogTimeProcessData);
+  wd.enabled = rx_map_.bytes() > 0 && wd_time != 0 &&
+               (sms[kOutputsSm].control & reg::sm::kWatchdogTrigger) != 0;
+  wd.time = process_data_watchdog_time(ctx_.pdi.read_u16(reg::kWatchdogDivider), wd_time);
+  const bool dc = (ctx_.pdi.read_u8(kDcActivation) & kDcSync0Active) == kDcSync0Active;
+  wd.synchronised = dc || read_unsigned(ctx_.objects, kSm2Sync, 1) != 0;
+  wd.cycle_ns = read_unsigned(ctx_.objects, kSm2Sync, 2);
+  if (!watchdog_setting_ok(wd, watchdog_limits_)) {
+    return {code_or(codes_.invalid_watchdog_config, kEtgWatchdogConfig), AlState::PreOp};
+  }
+  return CheckResult::pass();
+}
+
+void ProcessDataModule::entered(AlState from, AlState to, Nanos now) {
+  if (from == AlState::PreOp && to == AlState::SafeOp) {
+    // The mapping becomes effective here (A6B L7008, L7172, L7311).
+    rx_plan_.build(ctx_.objects, rx_map_);
+    tx_plan_.build(ctx_.objects, tx_map_);
+    sm2_start_ = sms_[kOutputsSm].start;
+    sm3_start_ = sms_[kInputsSm].start;
+    running_ = true;
+    outputs_valid_ = false;
+    produce_inputs(now);  // TxPDO valid from SafeOp on (A6B L7619-L7621)
+    return;
+  }
+  if (to == AlState::Op) return;
+  outputs_valid_ = false;
+  if (rank(to) < rank(AlState::SafeOp)) {
+    running_ = false;
+    cycle_by_sync_ = false;
+    rx_plan_.clear();
+    tx_plan_.clear();
+  }
+}
+
+}  // namespace vdrive::firmware::pdo

@@ -1,0 +1,33 @@
+#pragma once
+// The PreOp->SafeOp check of a process-data SyncManager (SM2 outputs, SM3 inputs) against the
+// mapped size, as A6B Err81.7 (L33546-L33624) and DS5C1 E-817 (L7129-L7133) describe it:
+// enabled iff the direction maps data; length = mapped bytes; 3-buffer mode with the right
+// direction; start even and the 3-buffer footprint (3 x length) inside process RAM; no overlap
+// with any other enabled SyncManager. Pure function of the SM channel registers.
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "vdrive/firmware/pdi.hpp"
+
+namespace vdrive::firmware::pdo {
+
+enum class PdSmFault : std::uint8_t {
+  Ok,
+  Disabled,          // data mapped but the SM is not enabled
+  EnabledWithoutData,// no data mapped but the SM is enabled with a length
+  Length,            // length != mapped bytes
+  Start,             // footprint outside process RAM
+  OddStart,
+  Control,           // not 3-buffer, or wrong direction
+  Overlap,
+};
+
+std::string_view describe(PdSmFault fault);
+
+// `sm` = 2 (outputs: master writes) or 3 (inputs: master reads); `sms` indexed by SM number;
+// process RAM is [0x1000, ram_end).
+PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, std::uint16_t mapped_bytes,
+                                std::uint32_t ram_end);
+
+}  // namespace vdrive::firmware::pdo
