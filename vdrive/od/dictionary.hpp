@@ -38,6 +38,7 @@ struct EntryDesc {
   bool synthesized = false;            // not printed in the manual (e.g. sub 0 of a record)
   int manual_line = 0;
   std::uint32_t value_offset = 0;      // byte offset of this entry in an ObjectStore
+  std::uint32_t value_bytes = 1;       // bytes it takes there: ceil(bit_length / 8), at least 1
 };
 
 struct ObjectDesc {
