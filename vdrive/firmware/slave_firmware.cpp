@@ -61,6 +61,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   }
 
   void power_on() {
+    objects.reset_to_defaults();   // RAM values are lost with the control power
     esm.reset();
     mailbox_running = false;
     pdi.write_u32(reg::kAlEventMask, serviced_events());
