@@ -1,0 +1,168 @@
+// Synchronisation firmware module; see sync_module.hpp.
+#include "vdrive/firmware/sync/sync_module.hpp"
+
+#include <array>
+#include <limits>
+
+#include "vdrive/firmware/pdi.hpp"
+
+namespace vdrive::firmware::sync {
+namespace {
+
+constexpr std::uint16_t kDcActivation = 0x0981;
+constexpr std::uint16_t kDcNextSync0 = 0x0990;   // 8 bytes: system time of the next SYNC0 pulse
+constexpr std::uint16_t kDcSync0Cycle = 0x09A0;
+constexpr std::uint32_t kSm2Event = 1u << (al_event::kSmShift + 2);
+// Free run with 1C32h-02h = 0 ("may be 0", A6B L7790): the drive's own period.
+constexpr Nanos kDefaultFreeRunCycle = 1000000;
+
+std::uint64_t read_u64(Pdi& pdi, std::uint16_t address) {
+  std::array<std::uint8_t, 8> b{};
+  pdi.read(address, b);
+  std::uint64_t v = 0;
+  for (std::size_t i = b.size(); i-- > 0;) v = (v << 8) | b[i];
+  return v;
+}
+
+}  // namespace
+
+SyncModule::SyncModule(const FirmwareContext& context)
+    : context_(context),
+      rules_(rules_for(context.profile)),
+      objects_(context.objects, rules_) {
+  objects_.load_power_on_values();
+  tasks_.reserve(4);
+}
+
+void SyncModule::on_cycle(std::function<void(Nanos)> task) { tasks_.push_back(std::move(task)); }
+
+std::uint32_t SyncModule::serviced_events() const { return al_event::kSync0 | kSm2Event; }
+
+void SyncModule::on_events(std::uint32_t events, Nanos now) {
+  if (events & al_event::kSync0) {
+    // Reading the SYNC0 status acknowledges the event (ET1100), whatever the state.
+    context_.pdi.read_u8(reg::kDcSync0Status);
+    if (monitor_.running() && decision_.mode == SyncMode::DcSync0) {
+      const std::uint32_t cycle = context_.pdi.read_u32(kDcSync0Cycle);
+      const std::uint64_t edge = read_u64(context_.pdi, kDcNextSync0) - cycle;
+      handle(monitor_.on_edge(edge, now, cycle), now);
+    }
+  }
+  if ((events & kSm2Event) && monitor_.running() && decision_.mode == SyncMode::Sm2Event)
+    handle(monitor_.on_edge(static_cast<std::uint64_t>(now), now), now);
+}
+
+CheckResult SyncModule::check_transition(AlState from, AlState to) {
+  if (from != AlState::PreOp || to != AlState::SafeOp) return CheckResult::pass();
+  SyncSettings settings;
+  settings.dc_activation = context_.pdi.read_u8(kDcActivation);
+  settings.sync0_cycle_ns = context_.pdi.read_u32(kDcSync0Cycle);
+  settings.output_sync_type = static_cast<std::uint16_t>(objects_.get(kOutputSync, sub::kSyncType));
+  settings.input_sync_type = static_cast<std::uint16_t>(objects_.get(kInputSync, sub::kSyncType));
+  settings.cycle_time_ns = static_cast<std::uint32_t>(objects_.get(kOutputSync, sub::kCycleTime));
+
+  settings = rewrite_from_dc_activation(rules_, settings);
+  objects_.set(kOutputSync, sub::kSyncType, settings.output_sync_type);
+  objects_.set(kInputSync, sub::kSyncType, settings.input_sync_type);
+
+  decision_ = check_sync_settings(rules_, context_.profile.al_codes, settings);
+  if (decision_.result.ok()) publish_running_values(settings);
+  return decision_.result;
+}
+
+void SyncModule::publish_running_values(const SyncSettings& s) {
+  const bool dc = decision_.mode == SyncMode::DcSync0;
+  for (const std::uint16_t index : {kOutputSync, kInputSync}) {
+    objects_.set(index, sub::kSync0CycleTime, dc ? s.sync0_cycle_ns : 0);
+    objects_.set(index, sub::kSyncError, 0);
+  }
+  // Read-only cycle times show what the drive runs: 1C32h-02h from 09A0h (DS1000A), 1C33h-02h
+  // a copy of 1C32h-02h (A6B L8000-L8030).
+  if (!rules_.spec.sm2.cycle_time_writable && dc) objects_.set(kOutputSync, sub::kCycleTime, s.sync0_cycle_ns);
+  if (!rules_.spec.sm3.cycle_time_writable)
+    objects_.set(kInputSync, sub::kCycleTime, objects_.get(kOutputSync, sub::kCycleTime));
+}
+
+MonitorConfig SyncModule::monitor_config() const {
+  MonitorConfig c;
+  c.mode = decision_.mode;
+  c.cycle = decision_.cycle_ns;
+  if (c.mode == SyncMode::FreeRun && c.cycle == 0) {
+    c.cycle = rules_.spec.sm2.min_cycle_time_ns != 0 ? rules_.spec.sm2.min_cycle_time_ns
+                                                     : kDefaultFreeRunCycle;
+  }
+  c.lock_timeout = rules_.spec.pll_lock_timeout_ns;
+  c.lock_edges = rules_.lock_edges;
+  c.missed_threshold = rules_.missed_threshold_object != 0
+                           ? static_cast<int>(objects_.get(rules_.missed_threshold_object, 0) & 0x0F)
+                           : rules_.spec.missed_sync_threshold;
+  return c;
+}
+
+void SyncModule::entered(AlState from, AlState to, Nanos now) {
+  if (from == AlState::PreOp && to == AlState::SafeOp) {
+    monitor_.start(monitor_config(), now);
+  } else if (rank(to) < rank(AlState::SafeOp)) {
+    monitor_.stop();
+  }
+}
+
+void SyncModule::tick(Nanos now) { handle(monitor_.on_timer(now), now); }
+
+Nanos SyncModule::next_deadline() const { return monitor_.next_deadline(); }
+
+void SyncModule::run_cycle(Nanos now) {
+  ++cycles_;
+  for (auto& task : tasks_) task(now);
+}
+
+void SyncModule::handle(const MonitorReport& r, Nanos now) {
+  if (r.missed > 0) {
+    if (rules_.sm_event_missed_sub != 0) {
+      objects_.count(kOutputSync, rules_.sm_event_missed_sub, static_cast<std::uint64_t>(r.missed));
+      objects_.count(kInputSync, rules_.sm_event_missed_sub, static_cast<std::uint64_t>(r.missed));
+    }
+    if (rules_.sync_error_count_object != 0)
+      objects_.count(rules_.sync_error_count_object, 0, static_cast<std::uint64_t>(r.missed));
+  }
+  if (r.cycle_too_small && rules_.cycle_too_small_sub != 0) {
+    objects_.count(kOutputSync, rules_.cycle_too_small_sub, 1);
+    objects_.count(kInputSync, rules_.cycle_too_small_sub, 1);
+  }
+  if (r.locked_now) {
+    for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 0);
+    // A measured SM2 cycle (read-only 1C32h-02h) is what the drive now runs; it must be one the
+    // product takes (DS1000A: 1 ms steps, L691-L693).
+    if (!rules_.spec.sm2.cycle_time_writable && decision_.mode == SyncMode::Sm2Event) {
+      const auto measured = static_cast<std::uint32_t>(monitor_.cycle());
+      objects_.set(kOutputSync, sub::kCycleTime, measured);
+      objects_.set(kInputSync, sub::kCycleTime, measured);
+      if (!cycle_time_accepted(rules_.spec, measured)) {
+        monitor_.stop();
+        raise_fault(context_.profile.al_codes.invalid_sync_cycle_time, AlState::PreOp);
+        return;
+      }
+    }
+  }
+  if (r.run_cycle) run_cycle(now);
+
+  const profile::AlStatusCodes& codes = context_.profile.al_codes;
+  switch (r.fault) {
+    case MonitorReport::Fault::None: break;
+    case MonitorReport::Fault::NoLock:
+      raise_fault(codes.no_sync_error, AlState::PreOp);
+      break;
+    case MonitorReport::Fault::LostSync:
+      if (rules_.sync_error_flag)
+        for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 1);
+      raise_fault(codes.sync_error, AlState::SafeOp);
+      break;
+    case MonitorReport::Fault::PllError:
+      if (rules_.sync_error_flag)
+        for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 1);
+      raise_fault(codes.pll_error, AlState::SafeOp);
+      break;
+  }
+}
+
+}  // namespace vdrive::firmware::sync
