@@ -4,6 +4,7 @@
 // (runtime::run_until) on the other. The master sees a Link whose receive() runs the event loop
 // for the wire round trip, then for as long as the master is willing to wait.
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -30,16 +31,29 @@ public:
     const Nanos start = clock_.now();
     runtime::run_until(network_, *ends_.second, clock_, start + std::min<Nanos>(kRoundTrip, std::max<Nanos>(timeout, 0)),
                        counters_);
-    if (const std::size_t n = ends_.first->receive(buf, 0)) return n;
+    if (after_run) after_run();
+    if (const std::size_t n = take(buf)) return n;
     runtime::run_until(network_, *ends_.second, clock_, start + std::max<Nanos>(timeout, 0), counters_);
-    return ends_.first->receive(buf, 0);
+    if (after_run) after_run();
+    return take(buf);
   }
+
+  // Test hooks: work done after the network ran (a stand-in firmware), and replies to lose.
+  std::function<void()> after_run;
+  std::function<bool(std::span<const std::uint8_t>)> drop_reply;
 
   VirtualClock& clock() { return clock_; }
   network::Network& network() { return network_; }
   const runtime::LoopCounters& counters() const { return counters_; }
 
 private:
+  std::size_t take(std::span<std::uint8_t> buf) {
+    for (;;) {
+      const std::size_t n = ends_.first->receive(buf, 0);
+      if (n == 0 || !drop_reply || !drop_reply(buf.first(n))) return n;
+    }
+  }
+
   std::vector<std::string> products_;
   VirtualClock clock_;
   network::Network network_;

@@ -1,0 +1,98 @@
+#include "master/op_run.hpp"
+
+#include <fmt/format.h>
+
+#include "master/dc.hpp"
+#include "master/master.hpp"
+
+namespace vdrive::master {
+
+namespace {
+constexpr std::uint16_t kSmOutputParameter = 0x1C32, kSmInputParameter = 0x1C33;
+constexpr std::uint16_t kSyncTypeDcSync0 = 2;
+
+// 1C32h/1C33h: synchronisation type (subindex 1) and cycle time (subindex 2), ETG.1020.
+void write_sync_parameters(Master& master, std::size_t i, Nanos cycle, OpRunResult& result) {
+  const Slave& s = master.slaves()[i];
+  if (!s.info.has_mailbox() || !(s.info.mailbox_protocols & mailbox_protocol::kCoE)) return;
+  for (std::uint16_t object : {kSmOutputParameter, kSmInputParameter}) {
+    try {
+      SdoClient& sdo = master.sdo(i);
+      sdo.download_value<std::uint16_t>(object, 1, kSyncTypeDcSync0);
+      sdo.download_value<std::uint32_t>(object, 2, static_cast<std::uint32_t>(cycle));
+    } catch (const std::exception& e) {
+      result.notes.push_back(fmt::format("slave {}: {:04X}h not set ({})", i, object, e.what()));
+    }
+  }
+}
+
+std::string al_summary(Master& master) {
+  std::string text;
+  for (std::size_t i = 0; i < master.slaves().size(); ++i) {
+    master.read_al_status(i);
+    text += "\n  " + describe(master.slaves()[i]);
+  }
+  return text;
+}
+}  // namespace
+
+OpRunResult run_to_op(Master& master, const OpRunOptions& options,
+                      const std::function<void(const std::string&)>& progress) {
+  OpRunResult result;
+  auto say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  master.set_mailbox_timeout(options.mailbox_timeout);
+  if (!master.request_state(AlState::PreOp)) {
+    result.error = "not every slave reached Pre-Op:" + al_summary(master);
+    return result;
+  }
+  say("Pre-Op");
+  result.layout = configure_process_data(master, &result.notes);
+  say(fmt::format("process image: {} output bytes, {} input bytes, expected LRW working counter {}",
+                  result.layout.output_bytes, result.layout.input_bytes, result.layout.expected_wkc));
+
+  if (options.dc) {
+    const DcResult dc = configure_dc(master, DcOptions{options.drift_frames});
+    result.reference_station = dc.reference_station;
+    if (dc.dc_slaves == 0) {
+      result.notes.push_back("no slave supports DC: running without");
+    } else {
+      for (std::size_t i = 0; i < master.slaves().size(); ++i) {
+        if (master.slaves()[i].dc_supported) write_sync_parameters(master, i, options.cycle, result);
+      }
+      result.sync0_start = activate_sync0(master, static_cast<std::uint32_t>(options.cycle), options.sync0_shift);
+      say(fmt::format("DC: reference 0x{:04X}, {} slaves, SYNC0 every {} ns from system time {}", dc.reference_station,
+                      dc.dc_slaves, options.cycle, result.sync0_start));
+    }
+  }
+
+  if (!master.request_state(AlState::SafeOp)) {
+    result.error = "not every slave reached Safe-Op:" + al_summary(master);
+    return result;
+  }
+  say("Safe-Op");
+  CyclicTask task(master.transport(), result.layout, master.slaves().size(), options.cycle, result.reference_station);
+  task.run(options.safeop_cycles);
+  task.request_state(AlState::Op);
+  const auto op_cycles = static_cast<std::uint64_t>(std::max<Nanos>(1, options.op_timeout / options.cycle));
+  task.run(op_cycles, [&] { return task.all_in(AlState::Op); });
+  if (!task.all_in(AlState::Op)) {
+    result.error = "not every slave reached Op:" + al_summary(master);
+    return result;
+  }
+  result.reached_op = true;
+  say("Op");
+  task.reset_stats();
+  task.run(options.cycles, [&] {
+    if (!task.all_in(AlState::Op)) ++result.left_op;
+    return false;
+  });
+  result.stats = task.stats();
+  say(fmt::format("{} cycles in Op, {} wrong working counters, {} lost frames, worst lateness {} us",
+                  result.stats.cycles, result.stats.wrong_wkc, result.stats.lost_frames, result.stats.max_late / 1000));
+  if (options.back_to_init) master.request_state(AlState::Init);
+  return result;
+}
+
+}  // namespace vdrive::master

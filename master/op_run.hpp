@@ -1,0 +1,51 @@
+#pragma once
+// The whole way to Op and back, as `vdrive-master op` and `vdrive demo` run it:
+//
+//   scan -> Pre-Op -> process data (PDOs from CoE or SII, SM2/SM3, FMMUs)
+//        -> [DC: delays, offsets, drift; 1C32h/1C33h sync type 2 + cycle time over CoE; SYNC0]
+//        -> Safe-Op -> cyclic frames start -> Op (requested inside the cyclic frames)
+//        -> N cycles in Op, wrong working counters counted -> Init.
+//
+// Steps that a slave does not support (no CoE answer for PDOs or 1C32h) fall back or are
+// skipped with a note; failures that leave the line short of Op are reported in `error`.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/clock.hpp"
+#include "master/cyclic_task.hpp"
+
+namespace vdrive::master {
+
+class Master;
+
+struct OpRunOptions {
+  Nanos cycle = 1'000'000;
+  bool dc = true;
+  std::uint64_t cycles = 1000;
+  int drift_frames = 15000;
+  std::int32_t sync0_shift = 0;
+  Nanos mailbox_timeout = 500'000'000;
+  std::uint64_t safeop_cycles = 100;       // cycles sent in Safe-Op before Op is requested
+  Nanos op_timeout = 5'000'000'000;        // until every slave reports Op
+  bool back_to_init = true;
+};
+
+struct OpRunResult {
+  bool reached_op = false;
+  CyclicStats stats;                       // of the cycles in Op
+  ProcessImageLayout layout;
+  std::uint16_t reference_station = 0;
+  std::uint64_t sync0_start = 0;
+  std::uint64_t left_op = 0;               // cycles whose AL status was not all-Op
+  std::vector<std::string> notes;          // fallbacks and skipped steps, one line each
+  std::string error;                       // why Op was not reached (empty when it was)
+  bool ok() const { return reached_op && stats.wrong_wkc == 0 && left_op == 0 && stats.cycles > 0; }
+};
+
+// `progress` (optional) gets one line per step. The master must have scanned the line.
+OpRunResult run_to_op(Master& master, const OpRunOptions& options,
+                      const std::function<void(const std::string&)>& progress = {});
+
+}  // namespace vdrive::master
