@@ -188,6 +188,11 @@ Nanos Esc::next_deadline() const {
 
 void Esc::reset() { impl_->power_on_reset(); }
 
+void Esc::set_dc_model(double drift_ppm, Nanos start_offset) {
+  impl_->dc.set_drift_ppm(drift_ppm);
+  impl_->dc.set_start_offset(start_offset);
+}
+
 std::uint8_t Esc::peek(std::uint16_t address) const { return impl_->mem[address]; }
 
 }  // namespace vdrive::esc

@@ -67,6 +67,10 @@ public:
   // Power-on reset: registers to their reset values, EEPROM reloaded into 0x0012 etc.
   void reset();
 
+  // DC oscillator model (see dc_unit.hpp): drift in ppm and the local time at global time 0.
+  // A property of the board, so reset() keeps it.
+  void set_dc_model(double drift_ppm, Nanos start_offset);
+
   // Test and tooling access to the raw memory, without side effects. The SII (0x0500-0x050F)
   // and DC (0x0900-0x09FF) windows live in SiiEeprom/DcUnit and read 0 here.
   std::uint8_t peek(std::uint16_t address) const;

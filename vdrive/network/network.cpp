@@ -16,6 +16,10 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
     auto slave = std::make_unique<Slave>();
     slave->profile = profile::load_profile(id, options.profile_dir);
     slave->esc = std::make_unique<esc::Esc>(profile::make_esc_config(slave->profile), clock);
+    if (slaves_.size() < options.dc_models.size()) {
+      const DcModel& dc = options.dc_models[slaves_.size()];
+      slave->esc->set_dc_model(dc.drift_ppm, dc.start_offset);
+    }
     slave->firmware = std::make_unique<firmware::SlaveFirmware>(slave->profile, *slave->esc);
     segment_.append(*slave->esc);
     slaves_.push_back(std::move(slave));

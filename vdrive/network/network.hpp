@@ -21,9 +21,16 @@
 
 namespace vdrive::network {
 
+// The DC oscillator of one slave's ESC (esc::DcUnit): drift in ppm, local time at global time 0.
+struct DcModel {
+  double drift_ppm = 0.0;
+  Nanos start_offset = 0;
+};
+
 struct NetworkOptions {
   Nanos hop_delay = 500;     // ns per slave and direction, see Segment
   std::string profile_dir;   // empty: the profiles built into the binary
+  std::vector<DcModel> dc_models;  // per slave in cable order; slaves beyond it: ideal oscillator
 };
 
 class Network {
