@@ -1,11 +1,15 @@
 // vdrive-master: the project's EtherCAT master as a command-line tool.
 //
 //   vdrive-master scan --iface IF [--state init|preop|safeop|op] [--json]
+//   vdrive-master sdo-read  --iface IF --slave N --index 0x6041 [--sub 0] [--type u16] [--complete]
+//   vdrive-master sdo-write --iface IF --slave N --index 0x6040 [--sub 0] [--type u16] [--complete] VALUE
+//   vdrive-master od-list   --iface IF --slave N [--names]
+//   vdrive-master op        --iface IF [--cycle-us 1000] [--dc] [--cycles N] [--drift-frames N]
 //
-// Prints one line (or one JSON object) per slave: position, configured address, identity, name
-// and AL state. Exit status: 0 success, 1 link/line error or no slaves, 2 the requested state was not reached
-// by every slave (the slaves are still printed, with their AL status codes), CLI11's own codes for
-// a bad command line. Errors are one line on stderr.
+// --slave N is the position printed by scan (0 = first slave). Exit status: 0 success, 1
+// link/line error, no slaves or a mailbox/SDO failure (an SDO abort prints its code and text), 2
+// the requested state was not reached or `op` saw wrong working counters, CLI11's own codes for a
+// bad command line. Errors are one line on stderr. Details: docs/master.md.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -16,11 +20,14 @@
 
 #include "master/al_state.hpp"
 #include "master/master.hpp"
+#include "master/op_run.hpp"
+#include "master/value_text.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 
 namespace {
 
 using vdrive::master::AlState;
+using vdrive::master::Master;
 using vdrive::master::Slave;
 
 std::string hex32(std::uint32_t v) { return fmt::format("0x{:08X}", v); }
@@ -47,7 +54,7 @@ nlohmann::json to_json(const Slave& s) {
 
 int run_scan(const std::string& iface, const std::optional<AlState>& target, bool json) {
   vdrive::link::RawSocketLink link(iface);
-  vdrive::master::Master master(link);
+  Master master(link);
   if (master.scan() == 0) {
     throw std::runtime_error("no EtherCAT slaves on " + iface + " (frames come back with working counter 0)");
   }
@@ -75,10 +82,107 @@ int run_scan(const std::string& iface, const std::optional<AlState>& target, boo
   return 0;
 }
 
+struct SdoArgs {
+  std::size_t slave = 0;
+  std::string index_text;
+  unsigned sub = 0;
+  std::string type = "hex";
+  bool complete = false;
+  std::string value;
+};
+
+std::uint16_t parse_index(const std::string& text) {
+  std::size_t used = 0;
+  unsigned long v = 0;
+  try {
+    v = std::stoul(text, &used, 0);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || v > 0xFFFF) throw std::invalid_argument("--index '" + text + "' is not an object index (0x0000-0xFFFF)");
+  return static_cast<std::uint16_t>(v);
+}
+
+// Scans and takes the line to Pre-Op (the mailbox runs from there), then checks the slave.
+Master& open_preop(Master& master, std::size_t slave) {
+  if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on the interface");
+  if (slave >= master.slaves().size()) {
+    throw std::invalid_argument(fmt::format("--slave {}: the line has {} slaves (0..{})", slave, master.slaves().size(),
+                                            master.slaves().size() - 1));
+  }
+  if (!master.request_state(slave, AlState::PreOp)) {
+    throw std::runtime_error("slave did not reach Pre-Op: " + vdrive::master::describe(master.slaves()[slave]));
+  }
+  return master;
+}
+
+int run_sdo(const std::string& iface, const SdoArgs& a, bool write) {
+  const std::uint16_t index = parse_index(a.index_text);
+  if (a.sub > 0xFF) throw std::invalid_argument("--sub must be 0..255");
+  std::vector<std::uint8_t> bytes;
+  if (write) bytes = vdrive::master::encode_value(a.type, a.value);  // before touching the line
+  vdrive::link::RawSocketLink link(iface);
+  Master master(link);
+  open_preop(master, a.slave);
+  auto& sdo = master.sdo(a.slave);
+  const auto sub = static_cast<std::uint8_t>(a.sub);
+  if (write) {
+    sdo.download(index, sub, bytes, a.complete);
+    std::printf("%04X:%02X <- %s\n", index, sub, vdrive::master::decode_value(a.type, bytes).c_str());
+  } else {
+    const auto value = sdo.upload(index, sub, a.complete);
+    std::printf("%04X:%02X = %s\n", index, sub, vdrive::master::decode_value(a.type, value).c_str());
+  }
+  return 0;
+}
+
+int run_od_list(const std::string& iface, std::size_t slave, bool names) {
+  vdrive::link::RawSocketLink link(iface);
+  Master master(link);
+  open_preop(master, slave);
+  auto& sdo = master.sdo(slave);
+  const auto list = sdo.od_list();
+  std::printf("%zu objects\n", list.size());
+  for (std::uint16_t index : list) {
+    if (!names) {
+      std::printf("%04X\n", index);
+      continue;
+    }
+    const auto d = sdo.object_description(index);
+    std::printf("%04X  %-6s max sub %3u  type 0x%04X  %s\n", index,
+                d.object_code == 7 ? "VAR" : d.object_code == 8 ? "ARRAY" : d.object_code == 9 ? "RECORD" : "?",
+                d.max_subindex, d.data_type, d.name.c_str());
+  }
+  return 0;
+}
+
+int run_op(const std::string& iface, const vdrive::master::OpRunOptions& options) {
+  vdrive::link::RawSocketLink link(iface);
+  Master master(link);
+  if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on " + iface);
+  for (const Slave& s : master.slaves()) std::puts(vdrive::master::describe(s).c_str());
+  const auto result = vdrive::master::run_to_op(master, options, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
+  for (const auto& note : result.notes) std::printf("note: %s\n", note.c_str());
+  if (!result.reached_op) {
+    std::fprintf(stderr, "vdrive-master: %s\n", result.error.c_str());
+    return 2;
+  }
+  std::printf("summary: %llu cycles of %lld us, working counter %u expected, %llu wrong, %llu lost, %llu not all in Op\n",
+              static_cast<unsigned long long>(result.stats.cycles), static_cast<long long>(options.cycle / 1000),
+              result.layout.expected_wkc, static_cast<unsigned long long>(result.stats.wrong_wkc),
+              static_cast<unsigned long long>(result.stats.lost_frames), static_cast<unsigned long long>(result.left_op));
+  if (!result.ok()) {
+    std::fprintf(stderr, "vdrive-master: %llu wrong working counters in %llu cycles\n",
+                 static_cast<unsigned long long>(result.stats.wrong_wkc), static_cast<unsigned long long>(result.stats.cycles));
+    return 2;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"vdrive-master: a small EtherCAT master (scan a line, bring it to a state)"};
+  CLI::App app{"vdrive-master: a small EtherCAT master (scan a line, SDOs, cyclic operation)"};
   app.require_subcommand(1);
   std::string iface;
   std::string state_text;
@@ -88,12 +192,54 @@ int main(int argc, char** argv) {
   scan->add_option("--state,-s", state_text, "Bring every slave to this state: init, preop, safeop, op")
       ->check(CLI::IsMember({"init", "preop", "safeop", "op"}, CLI::ignore_case));
   scan->add_flag("--json", json, "Print JSON instead of one line per slave");
+
+  SdoArgs sdo_args;
+  auto add_sdo_options = [&](CLI::App* cmd) {
+    cmd->add_option("--iface,-i", iface, "Network interface the line is connected to")->required();
+    cmd->add_option("--slave", sdo_args.slave, "Slave position as scan prints it (0 = first)")->required();
+    cmd->add_option("--index", sdo_args.index_text, "Object index, e.g. 0x6040")->required();
+    cmd->add_option("--sub", sdo_args.sub, "Subindex (default 0)");
+    cmd->add_option("--type", sdo_args.type, "u8 u16 u32 u64 i8 i16 i32 i64 string hex (default hex)")
+        ->check(CLI::IsMember(vdrive::master::value_types()));
+    cmd->add_flag("--complete", sdo_args.complete, "Complete access (the whole object from --sub 0 or 1)");
+  };
+  CLI::App* sdo_read = app.add_subcommand("sdo-read", "Read an object entry with an SDO upload");
+  add_sdo_options(sdo_read);
+  CLI::App* sdo_write = app.add_subcommand("sdo-write", "Write an object entry with an SDO download");
+  add_sdo_options(sdo_write);
+  sdo_write->add_option("VALUE", sdo_args.value, "The value, in the form --type says")->required();
+
+  std::size_t list_slave = 0;
+  bool names = false;
+  CLI::App* od_list = app.add_subcommand("od-list", "List a slave's objects with SDO information");
+  od_list->add_option("--iface,-i", iface, "Network interface the line is connected to")->required();
+  od_list->add_option("--slave", list_slave, "Slave position as scan prints it (0 = first)")->required();
+  od_list->add_flag("--names", names, "Also read every object's description (name, type)");
+
+  vdrive::master::OpRunOptions op_options;
+  long long cycle_us = 1000;
+  bool dc = false;
+  CLI::App* op = app.add_subcommand("op", "Take the line to Op and exchange process data every cycle");
+  op->add_option("--iface,-i", iface, "Network interface the line is connected to")->required();
+  op->add_option("--cycle-us", cycle_us, "Cycle time in microseconds (default 1000)")->check(CLI::Range(50, 1'000'000));
+  op->add_flag("--dc", dc, "Distributed clocks: delays, offsets, drift compensation, SYNC0 at the cycle time");
+  op->add_option("--cycles", op_options.cycles, "Cycles to run in Op (default 1000)")->check(CLI::Range(1ull, 100'000'000ull));
+  op->add_option("--drift-frames", op_options.drift_frames, "Static drift compensation frames (default 15000)")
+      ->check(CLI::Range(0, 1'000'000));
   CLI11_PARSE(app, argc, argv);
 
   try {
-    std::optional<AlState> target;
-    if (!state_text.empty()) target = vdrive::master::parse_al_state(state_text);
-    return run_scan(iface, target, json);
+    if (*scan) {
+      std::optional<AlState> target;
+      if (!state_text.empty()) target = vdrive::master::parse_al_state(state_text);
+      return run_scan(iface, target, json);
+    }
+    if (*sdo_read) return run_sdo(iface, sdo_args, false);
+    if (*sdo_write) return run_sdo(iface, sdo_args, true);
+    if (*od_list) return run_od_list(iface, list_slave, names);
+    op_options.cycle = cycle_us * 1000;
+    op_options.dc = dc;
+    return run_op(iface, op_options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "vdrive-master: %s\n", e.what());
     return 1;
