@@ -10,7 +10,9 @@
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/demo_command.hpp"
 #include "vdrive/cli/list_drives_command.hpp"
+#include "vdrive/cli/od_command.hpp"
 #include "vdrive/cli/run_command.hpp"
+#include "vdrive/cli/sii_command.hpp"
 
 namespace {
 
@@ -30,6 +32,8 @@ int main(int argc, char** argv) {
   add_run_command(app);
   add_list_drives_command(app);
   add_demo_command(app);
+  add_od_command(app);
+  add_sii_command(app);
 
   try {
     app.parse(argc, argv);

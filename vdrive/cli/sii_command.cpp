@@ -1,0 +1,72 @@
+#include "vdrive/cli/sii_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vdrive/cli/cli_error.hpp"
+#include "vdrive/profile/profile_loader.hpp"
+#include "vdrive/profile/sii_image.hpp"
+
+namespace vdrive::cli {
+namespace {
+
+struct SiiCommandOptions {
+  std::string drive;
+  std::string output;
+  std::string profile_dir;
+  bool hex = false;
+};
+
+void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), &std::fclose);
+  if (!f) throw CliError(kExitFailure, fmt::format("-o: cannot write '{}': {}", path, std::strerror(errno)));
+  if (std::fwrite(bytes.data(), 1, bytes.size(), f.get()) != bytes.size() || std::fflush(f.get()) != 0)
+    throw CliError(kExitFailure, fmt::format("-o: writing '{}' failed: {}", path, std::strerror(errno)));
+}
+
+// 16 bytes a line, each line starting with its SII word address (the unit EEPROM tools and
+// ETG.1000.6 use): "0008: 6f 06 00 00 ...".
+void print_hex(const std::vector<std::uint8_t>& bytes) {
+  for (std::size_t at = 0; at < bytes.size(); at += 16) {
+    const std::size_t n = std::min<std::size_t>(16, bytes.size() - at);
+    fmt::print("{:04x}: {:02x}\n", at / 2,
+               fmt::join(bytes.begin() + static_cast<std::ptrdiff_t>(at),
+                         bytes.begin() + static_cast<std::ptrdiff_t>(at + n), " "));
+  }
+}
+
+void run(const SiiCommandOptions& o) {
+  const std::vector<std::string> known = profile::known_products();
+  if (o.profile_dir.empty() && std::find(known.begin(), known.end(), o.drive) == known.end()) {
+    throw CliError(kExitBadArguments, fmt::format("--drive: unknown product '{}' (known: {})", o.drive,
+                                                  known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
+  }
+  if (o.output.empty() == !o.hex)
+    throw CliError(kExitBadArguments, "give either -o FILE (binary image) or --hex (hex dump on stdout)");
+  const std::vector<std::uint8_t> image = profile::build_sii_image(profile::load_profile(o.drive, o.profile_dir));
+  if (o.hex) print_hex(image);
+  else write_file(o.output, image);
+}
+
+}  // namespace
+
+void add_sii_command(CLI::App& app) {
+  auto o = std::make_shared<SiiCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("sii", "Write a product's SII EEPROM image (binary file or hex dump)");
+  cmd->add_option("--drive,-d", o->drive, "Product (see list-drives)")->required();
+  cmd->add_option("--output,-o", o->output, "Binary image file");
+  cmd->add_flag("--hex", o->hex, "Hex dump on stdout instead, 16 bytes a line, with the word address");
+  cmd->add_option("--profile-dir", o->profile_dir, "Load products from DIR/<id>/ instead of the built-in ones");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace vdrive::cli
