@@ -8,7 +8,8 @@
 #include "master/coe.hpp"
 #include "master/master.hpp"
 #include "tests/master/coe_test_server.hpp"
-#include "tests/master/virtual_line.hpp"
+#include "master/registers.hpp"
+#include "tests/master/bare_esc_link.hpp"
 
 namespace vdrive::master {
 namespace {
@@ -17,15 +18,22 @@ using Bytes = std::vector<std::uint8_t>;
 
 class CoeClient : public ::testing::Test {
 protected:
-  test::VirtualLine line{{"a6b"}};
+  test::BareEscLink line{"a6b"};
   Master master{line, line.clock()};
-  test::CoeTestServer server{line.network().esc(0)};
+  test::CoeTestServer server{line.esc()};
 
   void SetUp() override {
     ASSERT_EQ(master.scan(), 1u);
-    ASSERT_TRUE(master.request_state(AlState::PreOp));
+    // No firmware behind this ESC: enable the mailbox SMs as a master does before Pre-Op.
+    for (std::size_t n = 0; n < 2; ++n) {
+      const SmSetting& sm = master.slaves()[0].mailbox_sm[n];
+      const std::array<std::uint8_t, 8> regs{static_cast<std::uint8_t>(sm.start), static_cast<std::uint8_t>(sm.start >> 8),
+                                             static_cast<std::uint8_t>(sm.length), static_cast<std::uint8_t>(sm.length >> 8),
+                                             sm.control, 0, sm.activate, 0};
+      ASSERT_EQ(master.transport().fpwr(0x1001, static_cast<std::uint16_t>(reg::kSm0 + 8 * n), regs), 1);
+    }
     master.set_mailbox_timeout(50'000'000);
-    line.after_run = [this] { server.service(); };
+    line.after_frame = [this] { server.service(); };
     auto& d = server.dictionary;
     d[0x1000].entries[0] = {{0x92, 0x01, 0x02, 0x00}, false, "Device type"};
     d[0x6040].entries[0] = {{0x00, 0x00}, true, "Controlword"};
@@ -202,7 +210,7 @@ TEST_F(CoeClient, MailboxErrorReplyBecomesMailboxError) {
 }
 
 TEST_F(CoeClient, SilentSlaveTimesOut) {
-  line.after_run = nullptr;
+  line.after_frame = nullptr;
   const Nanos start = line.clock().now();
   EXPECT_THROW(sdo().upload(0x6060, 0), MailboxError);
   EXPECT_GE(line.clock().now() - start, 100'000'000) << "waited the timeout twice (before and after the repeat request)";
