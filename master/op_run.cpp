@@ -15,13 +15,16 @@ constexpr std::uint16_t kSyncTypeDcSync0 = 2;
 void write_sync_parameters(Master& master, std::size_t i, Nanos cycle, OpRunResult& result) {
   const Slave& s = master.slaves()[i];
   if (!s.info.has_mailbox() || !(s.info.mailbox_protocols & mailbox_protocol::kCoE)) return;
+  // 1C33h:02 follows 1C32h:02 on most drives (read-only there): only 1C32h gets the cycle time.
   for (std::uint16_t object : {kSmOutputParameter, kSmInputParameter}) {
     try {
       SdoClient& sdo = master.sdo(i);
       sdo.download_value<std::uint16_t>(object, 1, kSyncTypeDcSync0);
-      sdo.download_value<std::uint32_t>(object, 2, static_cast<std::uint32_t>(cycle));
+      if (object == kSmOutputParameter) sdo.download_value<std::uint32_t>(object, 2, static_cast<std::uint32_t>(cycle));
+    } catch (const SdoAbort& e) {
+      result.notes.push_back(fmt::format("slave {}: {:04X}h:{:02X} not written ({})", i, object, e.subindex(), e.what()));
     } catch (const std::exception& e) {
-      result.notes.push_back(fmt::format("slave {}: {:04X}h not set ({})", i, object, e.what()));
+      result.notes.push_back(fmt::format("slave {}: {:04X}h not written ({})", i, object, e.what()));
     }
   }
 }

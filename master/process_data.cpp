@@ -133,6 +133,12 @@ ProcessImageLayout configure_process_data(Master& master, std::vector<std::strin
         if (notes) notes->push_back(fmt::format("slave {}: PDOs from the SII ({})", i, e.what()));
       }
     }
+    // As SOEM does: a CoE slave that assigns nothing to SM2 and SM3 is mapped from its SII.
+    if (done && s.process_data.outputs.empty() && s.process_data.inputs.empty() &&
+        (!s.info.rx_pdos.empty() || !s.info.tx_pdos.empty())) {
+      if (notes) notes->push_back(fmt::format("slave {}: 1C12h/1C13h assign no PDOs; PDOs from the SII", i));
+      done = false;
+    }
     if (!done) sii_pdo_configuration(s.info, s.process_data);
     s.process_data.output_bytes = bytes_for(s.process_data.outputs);
     s.process_data.input_bytes = bytes_for(s.process_data.inputs);

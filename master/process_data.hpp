@@ -3,7 +3,8 @@
 //
 //  1. per slave, the assigned PDOs of SM2 (outputs, 1C12h) and SM3 (inputs, 1C13h) and their
 //     mapping (16xxh/1Axxh, entries index<<16 | sub<<8 | bit length) read with SDO uploads, or
-//     taken from the SII RxPDO/TxPDO categories when the slave has no CoE (or does not answer);
+//     taken from the SII RxPDO/TxPDO categories when the slave has no CoE, does not answer, or
+//     assigns no PDO at all (SOEM's rule);
 //  2. sizes rounded up to whole bytes; SM2/SM3 written with the SII start address and control
 //     byte and the computed length (disabled when nothing is mapped);
 //  3. a logical process image: all slaves' outputs first, then all inputs, from logical address
