@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libeigen3-dev libode-dev
+  libtinyxml2-dev
   iproute2 tshark procps
   python3 python3-yaml
 )

@@ -9,6 +9,7 @@
 
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/demo_command.hpp"
+#include "vdrive/cli/esi_command.hpp"
 #include "vdrive/cli/list_drives_command.hpp"
 #include "vdrive/cli/od_command.hpp"
 #include "vdrive/cli/run_command.hpp"
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   add_run_command(app);
   add_list_drives_command(app);
   add_demo_command(app);
+  add_esi_command(app);
   add_od_command(app);
   add_sii_command(app);
 

@@ -1,0 +1,69 @@
+#include "vdrive/cli/esi_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "vdrive/cli/cli_error.hpp"
+#include "vdrive/esi/esi_export.hpp"
+#include "vdrive/od/dictionary_cache.hpp"
+#include "vdrive/profile/profile_loader.hpp"
+
+namespace vdrive::cli {
+namespace {
+
+struct EsiCommandOptions {
+  std::string drive;
+  std::string output;        // empty or "-": stdout
+  std::string profile_dir;
+  bool without_od = false;
+  bool eeprom_image = false;
+};
+
+void write_file(const std::string& path, const std::string& text) {
+  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), &std::fclose);
+  if (!f) throw CliError(kExitFailure, fmt::format("-o: cannot write '{}': {}", path, std::strerror(errno)));
+  if (std::fwrite(text.data(), 1, text.size(), f.get()) != text.size() || std::fflush(f.get()) != 0)
+    throw CliError(kExitFailure, fmt::format("-o: writing '{}' failed: {}", path, std::strerror(errno)));
+}
+
+void run(const EsiCommandOptions& o) {
+  const std::vector<std::string> known = profile::known_products();
+  if (o.profile_dir.empty() && std::find(known.begin(), known.end(), o.drive) == known.end()) {
+    throw CliError(kExitBadArguments, fmt::format("--drive: unknown product '{}' (known: {})", o.drive,
+                                                  known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
+  }
+  const profile::ProductProfile p = profile::load_profile(o.drive, o.profile_dir);
+  const std::shared_ptr<const od::Dictionary> dict = od::shared_dictionary(p, o.profile_dir);
+  esi::EsiOptions options;
+  options.with_dictionary = !o.without_od;
+  options.eeprom_image = o.eeprom_image;
+  const std::string xml = esi::export_esi(p, *dict, options);
+  if (o.output.empty() || o.output == "-") {
+    std::fwrite(xml.data(), 1, xml.size(), stdout);
+  } else {
+    write_file(o.output, xml);
+  }
+}
+
+}  // namespace
+
+void add_esi_command(CLI::App& app) {
+  auto o = std::make_shared<EsiCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("esi", "Write a product's EtherCAT Slave Information (ESI) XML file");
+  cmd->add_option("--drive,-d", o->drive, "Product (see list-drives)")->required();
+  cmd->add_option("--output,-o", o->output, "Output file (default: stdout)");
+  cmd->add_flag("--without-od", o->without_od, "Leave the object dictionary out (the minimal ESI variant)");
+  cmd->add_flag("--eeprom-image", o->eeprom_image, "Put the whole SII image in <Eeprom><Data>");
+  cmd->add_option("--profile-dir", o->profile_dir, "Load products from DIR/<id>/ instead of the built-in ones");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace vdrive::cli

@@ -1,0 +1,187 @@
+#include "vdrive/esi/esi_dictionary.hpp"
+
+#include <fmt/core.h>
+
+#include <map>
+#include <vector>
+
+#include "vdrive/esi/esi_names.hpp"
+
+namespace vdrive::esi {
+namespace {
+
+using od::EntryDesc;
+using od::ObjectDesc;
+
+// Access state sets as ETG.2000 spells them: bit0 PreOP, bit1 SafeOP, bit2 OP.
+std::string restriction(unsigned states) {
+  switch (states & 0x7) {
+    case 1: return "PreOP";
+    case 2: return "SafeOP";
+    case 4: return "OP";
+    case 3: return "PreOP_SafeOP";
+    case 5: return "PreOP_OP";
+    case 6: return "SafeOP_OP";
+    default: return {};  // 7: every state (no restriction); 0 handled by the caller
+  }
+}
+
+std::string entry_type(const EntryDesc& e) { return type_name(e.type, e.bit_length); }
+
+bool is_complex(const ObjectDesc& o) { return o.code != od::ObjectCode::Var; }
+
+std::string complex_type_name(const ObjectDesc& o) { return fmt::format("DT{:04X}", o.index); }
+
+// Bit offsets for the complex type's SubItems, as a complete access transfers them: subindex 0
+// padded to 16 bits, the other entries packed in subindex order.
+struct Layout {
+  std::vector<std::uint32_t> offsets;  // per entry, in entries order
+  std::uint32_t bit_size = 0;
+};
+Layout layout(const ObjectDesc& o) {
+  Layout l;
+  std::uint32_t offset = 0;
+  for (const EntryDesc& e : o.entries) {
+    l.offsets.push_back(offset);
+    offset += e.subindex == 0 ? 16 : e.bit_length;
+  }
+  l.bit_size = offset;
+  return l;
+}
+
+// Little-endian bytes of a limit, as wide as the entry (at least one byte).
+std::vector<std::uint8_t> limit_bytes(std::int64_t value, std::uint16_t bit_length) {
+  const std::size_t n = std::max<std::size_t>(1, (bit_length + 7u) / 8u);
+  std::vector<std::uint8_t> out(n);
+  const auto u = static_cast<std::uint64_t>(value);
+  for (std::size_t i = 0; i < n && i < 8; ++i) out[i] = static_cast<std::uint8_t>(u >> (8 * i));
+  return out;
+}
+
+// <Info> of a single value: MinData, MaxData, DefaultData (hex, little-endian), or DefaultString
+// for a visible string. Nothing when the dictionary knows none of them.
+void write_value_info(XmlWriter& xml, const EntryDesc& e) {
+  const bool numeric = e.type != od::DataType::VisibleString && e.type != od::DataType::OctetString;
+  const bool has_limits = numeric && (e.min || e.max);
+  if (!has_limits && e.default_value.empty()) return;
+  xml.open("Info");
+  if (e.type == od::DataType::VisibleString) {
+    std::string text(e.default_value.begin(), e.default_value.end());
+    while (!text.empty() && text.back() == '\0') text.pop_back();
+    xml.element("DefaultString", text);
+  } else {
+    if (has_limits && e.min) xml.element("MinData", hex_binary(limit_bytes(*e.min, e.bit_length)));
+    if (has_limits && e.max) xml.element("MaxData", hex_binary(limit_bytes(*e.max, e.bit_length)));
+    if (!e.default_value.empty()) xml.element("DefaultData", hex_binary(e.default_value));
+  }
+  xml.close();
+}
+
+void write_flags(XmlWriter& xml, const EntryDesc& e) {
+  const AccessText a = access_text(e.access);
+  const std::string mapping = pdo_mapping_text(e.access);
+  // The manual prints "-" for reserved/manufacturer entries: no Access is claimed for them.
+  if (a.access.empty() && mapping.empty()) return;
+  xml.open("Flags");
+  if (!a.access.empty()) {
+    xml.open("Access");
+    if (!a.read_restrictions.empty()) xml.attr("ReadRestrictions", a.read_restrictions);
+    if (!a.write_restrictions.empty()) xml.attr("WriteRestrictions", a.write_restrictions);
+    xml.close_with_text(a.access);
+  }
+  if (!mapping.empty()) xml.element("PdoMapping", mapping);
+  xml.close();
+}
+
+void write_data_types(XmlWriter& xml, const od::Dictionary& d) {
+  // Every basic type an entry uses, once, sorted by name (deterministic output).
+  std::map<std::string, std::uint16_t> basic;
+  for (const ObjectDesc& o : d.objects())
+    for (const EntryDesc& e : o.entries) basic.emplace(entry_type(e), e.bit_length);
+  basic.erase("");
+  xml.open("DataTypes");
+  for (const auto& [name, bits] : basic) {
+    xml.open("DataType");
+    xml.element("Name", name);
+    xml.element("BitSize", std::to_string(bits));
+    xml.close();
+  }
+  for (const ObjectDesc& o : d.objects()) {
+    if (!is_complex(o)) continue;
+    const Layout l = layout(o);
+    xml.open("DataType");
+    xml.element("Name", complex_type_name(o));
+    xml.element("BitSize", std::to_string(l.bit_size));
+    for (std::size_t i = 0; i < o.entries.size(); ++i) {
+      const EntryDesc& e = o.entries[i];
+      xml.open("SubItem");
+      xml.element("SubIdx", std::to_string(e.subindex));
+      xml.element("Name", e.name);
+      xml.element("Type", entry_type(e));
+      xml.element("BitSize", std::to_string(e.bit_length));
+      xml.element("BitOffs", std::to_string(l.offsets[i]));
+      write_flags(xml, e);
+      xml.close();
+    }
+    xml.close();
+  }
+  xml.close();
+}
+
+void write_object(XmlWriter& xml, const ObjectDesc& o) {
+  if (o.entries.empty()) return;  // nothing a master could address
+  xml.open("Object");
+  xml.element("Index", hex(o.index, 4));
+  xml.element("Name", o.name);
+  if (!is_complex(o)) {
+    const EntryDesc& e = o.entries.front();
+    xml.element("Type", entry_type(e));
+    xml.element("BitSize", std::to_string(e.bit_length));
+    write_value_info(xml, e);
+    write_flags(xml, e);
+  } else {
+    xml.element("Type", complex_type_name(o));
+    xml.element("BitSize", std::to_string(layout(o).bit_size));
+    // One SubItem per entry, in DataType SubItem order, each with its own values.
+    xml.open("Info");
+    for (const EntryDesc& e : o.entries) {
+      xml.open("SubItem");
+      xml.element("Name", e.name);
+      write_value_info(xml, e);
+      xml.close();
+    }
+    xml.close();
+  }
+  xml.close();
+}
+
+}  // namespace
+
+AccessText access_text(std::uint16_t bits) {
+  const unsigned read = bits & od::access::kReadAll;
+  const unsigned write = (bits & od::access::kWriteAll) >> 3;
+  AccessText t;
+  if (read == 0 && write == 0) return t;
+  t.access = write == 0 ? "ro" : read == 0 ? "wo" : "rw";
+  if (read != 0) t.read_restrictions = restriction(read);
+  if (write != 0) t.write_restrictions = restriction(write);
+  return t;
+}
+
+std::string pdo_mapping_text(std::uint16_t bits) {
+  std::string m;
+  if (bits & od::access::kRxPdoMappable) m += 'R';
+  if (bits & od::access::kTxPdoMappable) m += 'T';
+  return m;
+}
+
+void write_dictionary(XmlWriter& xml, const od::Dictionary& d) {
+  xml.open("Dictionary");
+  write_data_types(xml, d);
+  xml.open("Objects");
+  for (const ObjectDesc& o : d.objects()) write_object(xml, o);
+  xml.close();
+  xml.close();
+}
+
+}  // namespace vdrive::esi
