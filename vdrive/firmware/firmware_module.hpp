@@ -38,6 +38,10 @@ public:
   virtual CheckResult check_transition(AlState /*from*/, AlState /*to*/) { return CheckResult::pass(); }
   virtual void entered(AlState /*from*/, AlState /*to*/, Nanos /*now*/) {}
 
+  // Control power on: the store was just reset to defaults; load what the drive keeps in
+  // non-volatile memory (stored parameters) and forget RAM state.
+  virtual void power_on(Nanos /*now*/) {}
+
   virtual void tick(Nanos /*now*/) {}
   virtual Nanos next_deadline() const { return std::numeric_limits<Nanos>::max(); }
 

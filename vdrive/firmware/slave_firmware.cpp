@@ -10,6 +10,7 @@
 
 #include "vdrive/firmware/al_state_machine.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
+#include "vdrive/firmware/mailbox/mailbox_module.hpp"
 #include "vdrive/firmware/mailbox_sm_check.hpp"
 #include "vdrive/firmware/pdi.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
@@ -52,7 +53,9 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   std::vector<std::unique_ptr<FirmwareModule>> modules;  // filled by install_modules()
 
   // The firmware's parts, in service order. Each issue's module is added here.
-  void install_modules() {}
+  void install_modules() {
+    modules.push_back(std::make_unique<mailbox::MailboxModule>(context));
+  }
 
   std::uint32_t serviced_events() const {
     std::uint32_t events = kEsmEvents;
@@ -62,6 +65,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
 
   void power_on() {
     objects.reset_to_defaults();   // RAM values are lost with the control power
+    for (auto& m : modules) m->power_on(now_);
     esm.reset();
     mailbox_running = false;
     pdi.write_u32(reg::kAlEventMask, serviced_events());

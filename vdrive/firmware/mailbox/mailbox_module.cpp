@@ -1,0 +1,252 @@
+#include "vdrive/firmware/mailbox/mailbox_module.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "vdrive/firmware/coe/coe_server.hpp"
+#include "vdrive/firmware/coe/parameter_store.hpp"
+#include "vdrive/firmware/pdi.hpp"
+#include "vdrive/profile/product_profile.hpp"
+
+namespace vdrive::firmware::mailbox {
+
+namespace {
+constexpr std::uint32_t sm_event(int n) { return 1u << (al_event::kSmShift + n); }
+constexpr std::uint16_t kProtocolCoE = 0x0004;  // SII mailbox protocol bit2
+
+std::size_t larger(std::uint16_t a, const std::optional<std::uint16_t>& b) {
+  return std::max<std::size_t>(a, b.value_or(0));
+}
+std::uint16_t sm_register(int n, std::uint16_t offset) {
+  return static_cast<std::uint16_t>(reg::kSm0 + reg::kSmStride * n + offset);
+}
+}  // namespace
+
+MailboxModule::MailboxModule(FirmwareContext& context, const MailboxOptions& options)
+    : context_(context),
+      request_(larger(context.profile.mailbox.rx_size, context.profile.mailbox.boot_rx_size)),
+      // One slot more than we fill, so a reply displaced by a repeat request always fits back.
+      queue_(kReplySlots + 1,
+             larger(context.profile.mailbox.tx_size, context.profile.mailbox.boot_tx_size)),
+      sent_(larger(context.profile.mailbox.tx_size, context.profile.mailbox.boot_tx_size)),
+      previous_(sent_.size()),
+      zeros_(sent_.size()),
+      resend_(sent_.size()) {
+  coe_ = std::make_unique<coe::CoeServer>(context, options.state_dir);
+}
+
+MailboxModule::~MailboxModule() = default;
+
+std::uint32_t MailboxModule::serviced_events() const {
+  return sm_event(0) | sm_event(1) | al_event::kSmActivation;
+}
+
+void MailboxModule::on_events(std::uint32_t events, Nanos now) {
+  if (!running_) return;
+  if (events & al_event::kSmActivation) service_repeat_request();
+  if (events & (sm_event(0) | sm_event(1))) service(now);
+}
+
+void MailboxModule::entered(AlState from, AlState to, Nanos now) {
+  if (to == AlState::Init) {
+    // The mailbox stops and forgets its exchange; emergencies stay buffered (A6B L4565).
+    running_ = false;
+    queue_.clear();
+    coe_->reset();
+    last_request_counter_ = 0;
+    reply_counter_ = 0;
+    sent_length_ = previous_length_ = 0;
+    return;
+  }
+  if (from != AlState::Init) return;
+  running_ = true;
+  boot_ = to == AlState::Boot;
+  service(now);
+}
+
+void MailboxModule::power_on(Nanos now) {
+  entered(AlState::Init, AlState::Init, now);
+  emergency_head_ = emergency_count_ = 0;
+  coe_->parameters().power_on();
+}
+
+void MailboxModule::post_emergency(const coe::Emergency& emergency) {
+  if (emergency_count_ == kEmergencySlots) {  // full: the oldest is dropped
+    emergency_head_ = (emergency_head_ + 1) % kEmergencySlots;
+    --emergency_count_;
+  }
+  emergencies_[(emergency_head_ + emergency_count_) % kEmergencySlots] = emergency;
+  ++emergency_count_;
+  if (running_) send_next();
+}
+
+bool MailboxModule::sm_full(int n) {
+  return (context_.pdi.read_u8(sm_register(n, reg::sm::kStatus)) & reg::sm::kMailboxFull) != 0;
+}
+
+// SM windows as the master configured them (start/length only: reading them has no side effect).
+void MailboxModule::service(Nanos now) {
+  sm0_start_ = context_.pdi.read_u16(sm_register(0, reg::sm::kStart));
+  sm0_length_ = context_.pdi.read_u16(sm_register(0, reg::sm::kLength));
+  sm1_start_ = context_.pdi.read_u16(sm_register(1, reg::sm::kStart));
+  sm1_length_ = context_.pdi.read_u16(sm_register(1, reg::sm::kLength));
+  reply_capacity_ = std::min<std::size_t>(sm1_length_, sent_.size());
+  if (reply_capacity_ <= kHeaderSize || sm0_length_ <= kHeaderSize) return;
+  send_next();
+  while (queue_.size() < kReplySlots && sm_full(0)) {
+    receive_request(now);
+    send_next();
+  }
+  queue_fragments();
+  send_next();
+}
+
+bool MailboxModule::receive_request(Nanos now) {
+  const std::size_t n = std::min<std::size_t>(sm0_length_, request_.size());
+  context_.pdi.read(sm0_start_, std::span<std::uint8_t>(request_.data(), n));
+  if (n < sm0_length_) {
+    // Only the last byte hands the buffer back; what lies beyond our buffer is not a request
+    // we could accept anyway (the header check below rejects such a length).
+    std::array<std::uint8_t, 1> last{};
+    context_.pdi.read(static_cast<std::uint16_t>(sm0_start_ + sm0_length_ - 1), last);
+  }
+  const Header header = Header::decode(request_);
+  if (header.type == static_cast<std::uint8_t>(Type::Error) || header.length == 0) {
+    queue_error(ErrorCode::InvalidHeader);
+    return true;
+  }
+  if (header.length > n - kHeaderSize) {
+    queue_error(ErrorCode::InvalidSize);
+    return true;
+  }
+  // A repeated counter is the master sending the same request again (it missed our working
+  // counter): the request was already served, so it is dropped (ETG.1000.4). 0 = not counted.
+  if (header.counter != 0 && header.counter == last_request_counter_) return true;
+  last_request_counter_ = header.counter;
+  dispatch(header, std::span<const std::uint8_t>(request_.data() + kHeaderSize, header.length),
+           now);
+  return true;
+}
+
+void MailboxModule::dispatch(const Header& header, std::span<const std::uint8_t> payload,
+                             Nanos now) {
+  const bool coe = header.type == static_cast<std::uint8_t>(Type::CoE) &&
+                   (context_.profile.mailbox.protocols & kProtocolCoE) != 0;
+  // In Boot only FoE runs; FoE itself arrives with issue 10, so for now every product answers
+  // FoE (and everything else it does not serve) with "unsupported protocol".
+  if (!coe || boot_) {
+    queue_error(ErrorCode::UnsupportedProtocol);
+    return;
+  }
+  const std::span<std::uint8_t> slot = queue_.back_slot();
+  const Outcome outcome = coe_->on_request(
+      payload, slot.subspan(kHeaderSize, reply_capacity_ - kHeaderSize), now);
+  if (outcome.error) {
+    queue_error(*outcome.error);
+    return;
+  }
+  if (outcome.length == 0) return;
+  reply_counter_ = next_counter(reply_counter_);
+  Header{static_cast<std::uint16_t>(outcome.length), 0, 0, 0,
+         static_cast<std::uint8_t>(Type::CoE), reply_counter_}
+      .encode(slot);
+  queue_.commit_back(kHeaderSize + outcome.length);
+}
+
+void MailboxModule::queue_error(ErrorCode code) {
+  const std::span<std::uint8_t> slot = queue_.back_slot();
+  reply_counter_ = next_counter(reply_counter_);
+  Header{kErrorPayloadSize, 0, 0, 0, static_cast<std::uint8_t>(Type::Error), reply_counter_}
+      .encode(slot);
+  slot[6] = static_cast<std::uint8_t>(kErrorService);
+  slot[7] = static_cast<std::uint8_t>(kErrorService >> 8);
+  slot[8] = static_cast<std::uint8_t>(static_cast<std::uint16_t>(code));
+  slot[9] = static_cast<std::uint8_t>(static_cast<std::uint16_t>(code) >> 8);
+  queue_.commit_back(kHeaderSize + kErrorPayloadSize);
+}
+
+void MailboxModule::queue_fragments() {
+  while (queue_.size() < kReplySlots) {
+    const std::span<std::uint8_t> slot = queue_.back_slot();
+    const std::size_t n = coe_->next_reply(slot.subspan(kHeaderSize, reply_capacity_ - kHeaderSize));
+    if (n == 0) return;
+    reply_counter_ = next_counter(reply_counter_);
+    Header{static_cast<std::uint16_t>(n), 0, 0, 0, static_cast<std::uint8_t>(Type::CoE),
+           reply_counter_}
+        .encode(slot);
+    queue_.commit_back(kHeaderSize + n);
+  }
+}
+
+bool MailboxModule::send_next() {
+  if (reply_capacity_ <= kHeaderSize) return false;
+  const SmChannel sm1 = context_.pdi.read_sm(1);
+  if (!sm1.enabled() || (sm1.status & reg::sm::kMailboxFull) != 0) return false;
+  if (emergency_count_ > 0) {
+    std::array<std::uint8_t, kHeaderSize + coe::Emergency::kPayloadSize> message{};
+    reply_counter_ = next_counter(reply_counter_);
+    Header{coe::Emergency::kPayloadSize, 0, 0, 0, static_cast<std::uint8_t>(Type::CoE),
+           reply_counter_}
+        .encode(message);
+    emergencies_[emergency_head_].encode(std::span<std::uint8_t>(message).subspan(kHeaderSize));
+    emergency_head_ = (emergency_head_ + 1) % kEmergencySlots;
+    --emergency_count_;
+    write_sm1(message);
+    return true;
+  }
+  if (queue_.empty()) return false;
+  write_sm1(queue_.front());
+  queue_.pop_front();
+  return true;
+}
+
+// Writes one message into SM1 and pads up to the SM's last byte, which hands it to the master.
+void MailboxModule::write_sm1(std::span<const std::uint8_t> message) {
+  const std::size_t n = std::min(message.size(), reply_capacity_);
+  std::copy_n(sent_.begin(), sent_length_, previous_.begin());
+  previous_length_ = sent_length_;
+  std::copy_n(message.begin(), n, sent_.begin());
+  sent_length_ = n;
+  context_.pdi.write(sm1_start_, message.first(n));
+  std::size_t at = n;
+  while (at < sm1_length_) {
+    const std::size_t chunk = std::min(zeros_.size(), sm1_length_ - at);
+    context_.pdi.write(static_cast<std::uint16_t>(sm1_start_ + at),
+                       std::span<const std::uint8_t>(zeros_.data(), chunk));
+    at += chunk;
+  }
+}
+
+// The master toggled SM1 activate bit1: it lost our last reply. Write it again, then answer
+// with PDI control bit1 = the request bit (ETG.1000.4 mailbox repeat).
+void MailboxModule::service_repeat_request() {
+  const SmChannel sm1 = context_.pdi.read_sm(1);
+  const bool request = (sm1.activate & reg::sm::kRepeatRequest) != 0;
+  const bool ack = (sm1.pdi_control & reg::sm::kRepeatAck) != 0;
+  if (request == ack || !sm1.enabled()) return;
+  const std::uint16_t pdi_control = sm_register(1, reg::sm::kPdiControl);
+  const auto base = static_cast<std::uint8_t>(sm1.pdi_control &
+                                              ~(reg::sm::kPdiDeactivate | reg::sm::kRepeatAck));
+  // A newer reply still unread in SM1 means the lost one is the one before it: resend that
+  // and put the newer one back in front of the queue.
+  std::span<const std::uint8_t> resend(sent_.data(), sent_length_);
+  if ((sm1.status & reg::sm::kMailboxFull) != 0 && previous_length_ > 0) {
+    queue_.push_front(resend);
+    resend = std::span<const std::uint8_t>(previous_.data(), previous_length_);
+  }
+  // Deactivating SM1 from the PDI side clears its buffer state; then it is enabled again.
+  context_.pdi.write_u8(pdi_control, static_cast<std::uint8_t>(base | reg::sm::kPdiDeactivate));
+  context_.pdi.write_u8(pdi_control, base);
+  sm1_start_ = sm1.start;
+  sm1_length_ = sm1.length;
+  reply_capacity_ = std::min<std::size_t>(sm1_length_, sent_.size());
+  if (!resend.empty() && reply_capacity_ > kHeaderSize) {
+    // Copy first: write_sm1 rotates sent_/previous_.
+    std::copy(resend.begin(), resend.end(), resend_.begin());
+    write_sm1(std::span<const std::uint8_t>(resend_.data(), resend.size()));
+  }
+  context_.pdi.write_u8(pdi_control,
+                        static_cast<std::uint8_t>(base | (request ? reg::sm::kRepeatAck : 0)));
+}
+
+}  // namespace vdrive::firmware::mailbox
