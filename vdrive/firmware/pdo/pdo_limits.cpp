@@ -1,5 +1,8 @@
 #include "vdrive/firmware/pdo/pdo_limits.hpp"
 
+#include <algorithm>
+#include <utility>
+
 namespace vdrive::firmware::pdo {
 
 namespace {
@@ -56,15 +59,53 @@ PdoLimits ds1000a() {
   return l;
 }
 
+DirectionLimits from_rules(std::uint16_t first_default,
+                           const std::vector<profile::PdoObjectRule>& objects,
+                           std::uint8_t max_assigned, std::uint16_t max_bytes) {
+  DirectionLimits d;
+  d.first_index = objects.empty() ? first_default : objects.front().index;
+  d.mapping_objects = static_cast<std::uint8_t>(objects.size());
+  for (const profile::PdoObjectRule& o : objects) d.max_entries = std::max(d.max_entries, o.max_entries);
+  d.max_assigned = max_assigned;
+  d.max_bytes = max_bytes;
+  return d;
+}
+
+// ProductProfile::pdo_rules (profile.yaml `pdo_rules`), when the profile carries them.
+PdoLimits from_profile(const profile::PdoRules& r) {
+  PdoLimits l;
+  l.rx = from_rules(kRxMappingFirst, r.rx_objects, r.max_rx_assigned, r.max_rx_bytes);
+  l.tx = from_rules(kTxMappingFirst, r.tx_objects, r.max_tx_assigned, r.max_tx_bytes);
+  // EsmStateSet bits (Init 01h, PreOp 02h, SafeOp 04h, Op 08h, Boot 10h) -> 1 << AlState.
+  l.writable_states = 0;
+  const std::pair<profile::EsmStateSet, AlState> states[] = {
+      {profile::kStateInit, AlState::Init}, {profile::kStatePreOp, AlState::PreOp},
+      {profile::kStateSafeOp, AlState::SafeOp}, {profile::kStateOp, AlState::Op},
+      {profile::kStateBoot, AlState::Boot}};
+  for (const auto& [bit, state] : states) {
+    if (r.writable_states & bit) l.writable_states |= 1u << static_cast<unsigned>(state);
+  }
+  l.wrong_state_abort = static_cast<od::SdoAbort>(r.wrong_state_abort);
+  l.sub0_must_be_zero = r.sub0_must_be_zero;
+  l.mappable_checked_on_write = !r.checked_at_safeop;
+  l.length_checked_on_write = !r.checked_at_safeop;
+  return l;
+}
+
 }  // namespace
 
 PdoLimits limits_for(const profile::ProductProfile& product) {
+  if (!product.pdo_rules.rx_objects.empty() || !product.pdo_rules.tx_objects.empty()) {
+    return from_profile(product.pdo_rules);
+  }
   if (product.id == "a6b") return a6b();
   if (product.id == "ds5c1") return ds5c1();
   return ds1000a();  // the plain ETG rules, which the DS1000A-EC follows
 }
 
 WatchdogLimits watchdog_limits_for(const profile::ProductProfile& product) {
+  const profile::WatchdogRule& rule = product.sync.watchdog;
+  if (rule.min_cycles != 0 || rule.min_free_run_ns != 0) return {rule.min_cycles, rule.min_free_run_ns};
   // A6B Err81.4 (L33447-L33481): 2 x cycle in DC/SM2, 2 ms in free run.
   if (product.id == "a6b") return {2, 2'000'000};
   // DS5C1 E-814 (L7126): 2 x cycle time; free run not stated.

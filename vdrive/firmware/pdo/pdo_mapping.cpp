@@ -18,6 +18,7 @@ std::string_view describe(MappingFault fault) {
 MappingFault check_entry(const od::Dictionary& dictionary, MappingEntry entry, Direction direction,
                          const od::EntryDesc*& out) {
   out = nullptr;
+  if (entry.bits == 0) return MappingFault::NoSuchObject;  // an unused (zero) entry maps nothing
   if (entry.is_gap()) return MappingFault::Ok;
   const od::EntryDesc* desc = dictionary.find(entry.index, entry.subindex);
   if (desc == nullptr) return MappingFault::NoSuchObject;
