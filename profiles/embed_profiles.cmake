@@ -1,5 +1,6 @@
 # cmake -P script: writes OUTPUT, a C++ file holding every PROFILE_DIR/<id>/profile.yaml as a raw
-# string literal and its objects.yaml (if any) as raw string literals of at most 60000 bytes each,
+# string literal, its objects.yaml (if any) as raw string literals of at most 60000 bytes each and
+# its alarms.yaml and motors.yaml (if any) as one raw string literal each,
 # defining vdrive::profile::embedded_profiles() (vdrive/profile/embedded_profiles.hpp).
 if(NOT OUTPUT OR NOT PROFILE_DIR)
   message(FATAL_ERROR "usage: cmake -DOUTPUT=<file.cpp> -DPROFILE_DIR=<profiles dir> -P embed_profiles.cmake")
@@ -68,7 +69,22 @@ foreach(rel IN LISTS yamls)
     string(APPEND objects_out "};\n")
     set(objects "kObjects_${id}")
   endif()
-  string(APPEND profiles_out "    {\"${id}\", R\"${delimiter}(${text})${delimiter}\", ${objects}},\n")
+  # alarms.yaml and motors.yaml: one plain raw literal each (small files; refuse one that is not).
+  set(small_files "")
+  foreach(name alarms motors)
+    set(small "\"\"")
+    if(EXISTS "${PROFILE_DIR}/${id}/${name}.yaml")
+      file(READ "${PROFILE_DIR}/${id}/${name}.yaml" small_text)
+      string(LENGTH "${small_text}" small_length)
+      string(FIND "${small_text}" ")${delimiter}\"" small_clash)
+      if(small_length GREATER kPiece OR NOT small_clash EQUAL -1)
+        message(FATAL_ERROR "profiles/${id}/${name}.yaml is over ${kPiece} bytes or contains ')${delimiter}\"'")
+      endif()
+      set(small "R\"${delimiter}(${small_text})${delimiter}\"sv")
+    endif()
+    string(APPEND small_files ", ${small}")
+  endforeach()
+  string(APPEND profiles_out "    {\"${id}\", R\"${delimiter}(${text})${delimiter}\", ${objects}${small_files}},\n")
   math(EXPR count "${count} + 1")
 endforeach()
 if(count EQUAL 0)

@@ -47,6 +47,12 @@ public:
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_ / id);
     std::ofstream(dir_ / id / "profile.yaml") << text;
+    // A product is three files: the alarm table and motor catalogue come from the built-in copy.
+    for (const auto& e : embedded_profiles()) {
+      if (e.id != id) continue;
+      std::ofstream(dir_ / id / "alarms.yaml") << e.alarms_yaml;
+      std::ofstream(dir_ / id / "motors.yaml") << e.motors_yaml;
+    }
   }
   ~TempProfileDir() { fs::remove_all(dir_); }
   std::string path() const { return dir_.string(); }

@@ -14,6 +14,8 @@ struct EmbeddedProfile {
   // none). In pieces of at most 60000 bytes cut after a newline, because ISO C++ only promises
   // 65536-byte string literals (-Woverlength-strings) and the A6B file is ~430 KB.
   std::span<const std::string_view> objects_yaml;
+  std::string_view alarms_yaml;  // profiles/<id>/alarms.yaml, byte for byte ("" when there is none)
+  std::string_view motors_yaml;  // profiles/<id>/motors.yaml, byte for byte ("" when there is none)
 };
 
 // The joined objects.yaml text of `profile` (one allocation; call at load time).

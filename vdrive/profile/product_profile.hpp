@@ -265,6 +265,7 @@ struct AlarmSpec {
 // A motor of the product's catalogue. Absent values are 0 (the manual does not give them).
 struct MotorSpec {
   std::string model;
+  std::string condition;                              // when ratings depend on it, e.g. "24 V supply" ("" = none)
   std::string source;                                 // manual line(s)
   double rated_power_w = 0;
   double rated_torque_nm = 0;                         // continuous (servo) or holding torque (stepper)

@@ -8,6 +8,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "vdrive/profile/embedded_profiles.hpp"
+#include "vdrive/profile/profile_sections.hpp"
 #include "vdrive/profile/yaml_map_reader.hpp"
 
 namespace vdrive::profile {
@@ -235,8 +236,31 @@ ProductProfile parse_profile(std::string_view id, const std::string& text, const
   p.foe_details = root.u8("foe_details");
   p.rx_pdos = read_pdos(root, "rx_pdos", 0x1600);
   p.tx_pdos = read_pdos(root, "tx_pdos", 0x1A00);
+  p.sync = read_sync(root.map("sync"));
+  p.pdo_rules = read_pdo_rules(root.map("pdo_rules"));
+  p.modes = read_modes(root.map("modes"));
+  p.homing = read_homing(root.map("homing"));
+  p.touch_probe = read_touch_probe(root.map("touch_probe"));
+  check_consistency(p, root);
   root.finish();
   return p;
+}
+
+// The file beside profile.yaml: alarms.yaml or motors.yaml. Every product has both.
+std::string read_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ProfileError(file + ": cannot read (every product has profile.yaml, alarms.yaml and motors.yaml)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void add_tables(ProductProfile& p, std::string_view alarms, std::string_view motors, const std::string& dir) {
+  const std::string alarms_file = dir + "/alarms.yaml", motors_file = dir + "/motors.yaml";
+  if (alarms.empty()) throw ProfileError(alarms_file + ": missing (every product has an alarm table)");
+  if (motors.empty()) throw ProfileError(motors_file + ": missing (every product has a motor catalogue)");
+  p.alarms = parse_alarms(p.id, std::string(alarms), alarms_file);
+  p.motors = parse_motors(p.id, std::string(motors), motors_file);
 }
 
 }  // namespace
@@ -251,8 +275,11 @@ std::vector<std::string> known_products() {
 ProductProfile load_profile(std::string_view id, const std::string& profile_dir) {
   if (profile_dir.empty()) {
     for (const auto& e : embedded_profiles()) {
-      if (e.id == id)
-        return parse_profile(id, std::string(e.yaml), "profiles/" + std::string(id) + "/profile.yaml");
+      if (e.id != id) continue;
+      const std::string dir = "profiles/" + std::string(id);
+      ProductProfile p = parse_profile(id, std::string(e.yaml), dir + "/profile.yaml");
+      add_tables(p, e.alarms_yaml, e.motors_yaml, dir);
+      return p;
     }
     throw ProfileError("unknown product '" + std::string(id) + "' (known products: " + known_list() + ")");
   }
@@ -269,7 +296,10 @@ ProductProfile load_profile(std::string_view id, const std::string& profile_dir)
                        " (built-in products: " + known_list() + ")");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_profile(id, text.str(), file);
+  const std::string dir = profile_dir + "/" + std::string(id);
+  ProductProfile p = parse_profile(id, text.str(), file);
+  add_tables(p, read_file(dir + "/alarms.yaml"), read_file(dir + "/motors.yaml"), dir);
+  return p;
 }
 
 }  // namespace vdrive::profile

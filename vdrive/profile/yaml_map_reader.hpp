@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
@@ -25,7 +26,15 @@ public:
   std::uint8_t u8(std::string_view key);
   std::uint16_t u16(std::string_view key);
   std::uint32_t u32(std::string_view key);
+  std::int8_t i8(std::string_view key);
+  std::int16_t i16(std::string_view key);
+  double real(std::string_view key);                   // a finite decimal number, >= 0
   bool boolean(std::string_view key);
+  // Sequences of integers, e.g. [125000, 250000] or [0x00, 0x03]; each element range-checked.
+  std::vector<std::uint8_t> u8_list(std::string_view key);
+  std::vector<std::uint16_t> u16_list(std::string_view key);
+  std::vector<std::uint32_t> u32_list(std::string_view key);
+  std::vector<std::int8_t> i8_list(std::string_view key);
   std::string string(std::string_view key, std::size_t max_bytes = 255);
   YAML::Node sequence(std::string_view key);          // a YAML sequence
   YamlMapReader map(std::string_view key);             // a nested mapping
@@ -44,6 +53,12 @@ public:
 private:
   YAML::Node get(std::string_view key);                // marks the key used; throws if missing
   std::uint64_t unsigned_value(std::string_view key, std::uint64_t max, std::string_view expected);
+  std::int64_t signed_value(std::string_view key, std::int64_t min, std::int64_t max, std::string_view expected);
+  // Parses one scalar node as an integer in [min, max]; `field` names it in the error.
+  std::int64_t integer_at(const YAML::Node& v, const std::string& field, int line, std::int64_t min,
+                          std::int64_t max, std::string_view expected) const;
+  template <typename T>
+  std::vector<T> integer_list(std::string_view key, std::int64_t min, std::int64_t max, std::string_view expected);
   std::string field(std::string_view key) const;
   int line_of(std::string_view key) const;
 

@@ -1,0 +1,32 @@
+#pragma once
+// Readers for the parts of a product beyond identity and SII (issue 3 item 2): the profile.yaml
+// sections sync, pdo_rules, modes, homing and touch_probe, and the files alarms.yaml and
+// motors.yaml. Each reader checks what the data must satisfy on its own; check_consistency()
+// checks the rules that tie sections together. Errors are ProfileError "<file>:<line>: <field>: ...".
+#include <string>
+#include <vector>
+
+#include "vdrive/profile/product_profile.hpp"
+#include "vdrive/profile/yaml_map_reader.hpp"
+
+namespace vdrive::profile {
+
+SyncSpec read_sync(YamlMapReader m);
+PdoRules read_pdo_rules(YamlMapReader m);
+ModesSpec read_modes(YamlMapReader m);
+HomingSpec read_homing(YamlMapReader m);
+TouchProbeSpec read_touch_probe(YamlMapReader m);
+
+// Cross-section rules: default PDOs exist in pdo_rules and fit its limits; per-mode cycle limits
+// name supported modes. `root` is profile.yaml's top level, used to point at the offending key.
+void check_consistency(const ProductProfile& p, const YamlMapReader& root);
+
+// alarms.yaml / motors.yaml: `text` is the file, `file` its name in messages, `id` the product
+// (the file's `product:` must name it).
+std::vector<AlarmSpec> parse_alarms(std::string_view id, const std::string& text, const std::string& file);
+std::vector<MotorSpec> parse_motors(std::string_view id, const std::string& text, const std::string& file);
+
+// Parses `text` as YAML; a syntax error becomes a ProfileError naming file and line.
+YAML::Node load_yaml(const std::string& text, const std::string& file);
+
+}  // namespace vdrive::profile
