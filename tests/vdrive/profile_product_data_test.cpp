@@ -14,9 +14,9 @@ namespace vdrive::profile {
 namespace {
 
 const AlarmSpec& alarm(const ProductProfile& p, const std::string& code) {
-  const auto it = std::find_if(p.alarms.begin(), p.alarms.end(), [&](const AlarmSpec& a) { return a.code == code; });
-  if (it == p.alarms.end()) throw std::runtime_error(p.id + ": no alarm " + code);
-  return *it;
+  const AlarmSpec* a = p.find_alarm(code);
+  if (!a) throw std::runtime_error(p.id + ": no alarm " + code);
+  return *a;
 }
 
 const MotorSpec& motor(const ProductProfile& p, const std::string& model, const std::string& condition = {}) {
@@ -201,6 +201,21 @@ TEST(ProfileProductData, Ds1000aAlarmsAndMotors) {
   EXPECT_EQ(stm42.encoder_counts_per_rev, 16000u);
   EXPECT_DOUBLE_EQ(motor(p, "STM28W100A", "48 V supply, high-speed mode").rated_speed_rpm, 1800.0);  // L5830
   EXPECT_DOUBLE_EQ(motor(p, "STM28W100A", "24 V supply, high-speed mode").max_speed_rpm, 3000.0);  // L5831
+}
+
+// ------------------------------------------------------------------------------------------ helpers
+
+TEST(ProfileProductData, CycleAcceptanceFollowsListOrStep) {
+  const ProductProfile a6b = load_profile("a6b");
+  EXPECT_TRUE(a6b.sync.accepts_cycle(125000));           // L2846
+  EXPECT_FALSE(a6b.sync.accepts_cycle(3000000));         // not in the list (Err81.0, L33357-L33359)
+  EXPECT_EQ(a6b.sync.min_cycle_for_mode(1), 250000u);    // pp (L2848)
+  EXPECT_EQ(a6b.sync.min_cycle_for_mode(8), 125000u);    // csp: the product minimum
+  const ProductProfile ds1000a = load_profile("ds1000a");
+  EXPECT_TRUE(ds1000a.sync.accepts_cycle(3000000));      // any 1 ms multiple (L691-L693)
+  EXPECT_FALSE(ds1000a.sync.accepts_cycle(1500000));
+  EXPECT_FALSE(ds1000a.sync.accepts_cycle(0));
+  EXPECT_EQ(ds1000a.find_alarm("E-804"), nullptr);       // a DS5C1 code is not a DS1000A-EC alarm
 }
 
 // ------------------------------------------------------------------------------------ all products

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vdrive::profile {
@@ -114,8 +115,8 @@ enum class SyncType : std::uint16_t {
 };
 
 // The values one of 1C32h (outputs, SM2) or 1C33h (inputs, SM3) holds after power-up and what the
-// product accepts there. Times in ns. A value of 0 where the manual says "not supported" means the
-// subindex reads 0; `supported` flags say which optional subindexes exist at all.
+// product accepts there. Times in ns. Where the manual says "not supported" the value is 0 (the
+// subindex reads 0); which subindexes exist is the object dictionary's business (objects.yaml).
 struct SyncObjectSpec {
   std::uint16_t default_sync_type = 0;                // 01h after power-up
   std::vector<std::uint16_t> accepted_sync_types;     // 01h values a write / PS check accepts
@@ -130,7 +131,8 @@ struct SyncObjectSpec {
   bool error_counters = false;                        // 0Bh-0Eh and 20h are real counters (else read 0)
 };
 
-// Shift-time rule for 1C33h-03h (input latch after SYNC0/SM2): 0 = no shift accepted.
+// Shift-time rule for 1C33h-03h (input latch after SYNC0/SM2) or 1C32h-03h. max_ns = 0: only 0 is
+// accepted (the product has no shift).
 struct ShiftTimeRule {
   std::uint32_t step_ns = 0;                          // value must be a multiple of this (0 = any)
   std::uint32_t max_ns = 0;                           // largest accepted value
@@ -139,8 +141,8 @@ struct ShiftTimeRule {
 };
 
 // Process-data (SM2) watchdog rule checked at PreOp->SafeOp when the watchdog is enabled
-// (SM2 control bit 6): timeout = (0400h + 2) * 40 ns * 0420h must be at least
-// max(min_cycles * cycle time, min_ns); min_free_run_ns replaces it in free run.
+// (SM2 control bit 6): the timeout, (0400h + 2) * 40 ns * 0420h, must be at least
+// min_cycles * cycle time in SM2/DC mode, and at least min_free_run_ns in free run.
 struct WatchdogRule {
   std::uint8_t min_cycles = 0;                        // e.g. A6B Err81.4: 2 x cycle (0 = no check)
   std::uint32_t min_free_run_ns = 0;                  // e.g. A6B Err81.4: 2 ms in free run
@@ -173,6 +175,20 @@ struct SyncSpec {
   WatchdogRule watchdog;
   std::uint32_t pll_lock_timeout_ns = 0;              // sync must lock within this after PS (0 = not stated)
   std::uint8_t missed_sync_threshold = 0;             // consecutive SYNC0/IRQ misses before a sync error (0 = never)
+
+  // True when `ns` is a cycle time the product accepts in SM2/DC mode (1C32h-02h / 09A0h).
+  bool accepts_cycle(std::uint32_t ns) const {
+    if (cycle_step_ns != 0) return ns >= cycle_min_ns && ns <= cycle_max_ns && ns % cycle_step_ns == 0;
+    for (const std::uint32_t c : cycle_times_ns)
+      if (c == ns) return true;
+    return false;
+  }
+  // The shortest cycle `mode` (6060h) runs at: its mode_min_cycle entry, else cycle_min_ns.
+  std::uint32_t min_cycle_for_mode(std::int8_t mode) const {
+    for (const ModeCycleLimit& l : mode_min_cycle)
+      if (l.mode == mode) return l.min_cycle_ns;
+    return cycle_min_ns;
+  }
 };
 
 // --- PDO mapping rules ---------------------------------------------------------------------------
@@ -306,7 +322,14 @@ struct ProductProfile {
   HomingSpec homing;
   TouchProbeSpec touch_probe;
   std::vector<AlarmSpec> alarms;                      // profiles/<id>/alarms.yaml, in manual order
-  std::vector<MotorSpec> motors;                      // profiles/<id>/motors.yaml (may be empty)
+  std::vector<MotorSpec> motors;                      // profiles/<id>/motors.yaml (at least one entry)
+
+  // The alarm with vendor code `code` ("80.4", "E-804", "FF80h"), or nullptr.
+  const AlarmSpec* find_alarm(std::string_view code) const {
+    for (const AlarmSpec& a : alarms)
+      if (a.code == code) return &a;
+    return nullptr;
+  }
 };
 
 }  // namespace vdrive::profile
