@@ -30,7 +30,7 @@ struct DcModel {
 struct NetworkOptions {
   Nanos hop_delay = 500;     // ns per slave and direction, see Segment
   std::string profile_dir;   // empty: the profiles built into the binary
-  std::vector<DcModel> dc_models;  // per slave in cable order; slaves beyond it: ideal oscillator
+  std::vector<DcModel> dc_models = {};  // per slave in cable order; slaves beyond it: ideal oscillator
 };
 
 class Network {

@@ -34,7 +34,17 @@ SyncModule::SyncModule(const FirmwareContext& context)
   tasks_.reserve(4);
 }
 
+void SyncModule::power_on(Nanos /*now*/) {
+  monitor_.stop();
+  decision_ = {};
+  objects_.load_power_on_values();
+}
+
 void SyncModule::on_cycle(std::function<void(Nanos)> task) { tasks_.push_back(std::move(task)); }
+
+void SyncModule::on_start(std::function<void(SyncMode)> listener) {
+  start_listeners_.push_back(std::move(listener));
+}
 
 std::uint32_t SyncModule::serviced_events() const { return al_event::kSync0 | kSm2Event; }
 
@@ -102,6 +112,7 @@ MonitorConfig SyncModule::monitor_config() const {
 void SyncModule::entered(AlState from, AlState to, Nanos now) {
   if (from == AlState::PreOp && to == AlState::SafeOp) {
     monitor_.start(monitor_config(), now);
+    for (auto& listener : start_listeners_) listener(decision_.mode);
   } else if (rank(to) < rank(AlState::SafeOp)) {
     monitor_.stop();
   }

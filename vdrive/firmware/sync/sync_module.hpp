@@ -30,7 +30,12 @@ public:
   // Work to run once per drive cycle in SafeOp and Op, in registration order. Register at
   // construction time only (this allocates); the cycle itself allocates nothing.
   void on_cycle(std::function<void(Nanos)> task);
+  // Told the sync mode each time the cycle starts (PreOp->SafeOp), e.g. so the process-data
+  // module exchanges at SYNC0 in DC mode and on its SM2 event otherwise. Construction time only.
+  void on_start(std::function<void(SyncMode)> listener);
 
+  // Control power on: the 1C32h/1C33h values the drive computes at boot, nothing running.
+  void power_on(Nanos now) override;
   std::uint32_t serviced_events() const override;
   void on_events(std::uint32_t events, Nanos now) override;
   CheckResult check_transition(AlState from, AlState to) override;
@@ -57,6 +62,7 @@ private:
   SyncMonitor monitor_;
   SyncDecision decision_;
   std::vector<std::function<void(Nanos)>> tasks_;
+  std::vector<std::function<void(SyncMode)>> start_listeners_;
   std::uint64_t cycles_ = 0;
 };
 

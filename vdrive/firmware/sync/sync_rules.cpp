@@ -21,9 +21,8 @@ SyncSpec a6b_manual() {
   s.mode_min_cycle = {{1, 250000}, {3, 250000}, {4, 250000}};    // pp/pv/tq L14414, L20771, L23430
   s.sm2.default_sync_type = 0x00;                                // factory value not in the manual
   s.sm2.accepted_sync_types = {0x00, 0x01, 0x02};                // Err81.6
-  // Factory value not in the manual: 1 ms, so a master that programs a 1 ms SYNC0 without
-  // writing 1C32h-02h passes Err81.0 (the 1-1 example writes it, L1545-L1551).
-  s.sm2.default_cycle_time_ns = 1000000;
+  // Factory value not in the manual: 0 (the master writes it, as the 1-1 example does, L1545-L1551).
+  s.sm2.default_cycle_time_ns = 0;
   s.sm2.cycle_time_writable = true;
   s.sm2.shift_time_writable = false;                             // 03h ro, not supported
   s.sm2.supported_sync_types = 0x0007;                           // L7800-L7830
@@ -54,7 +53,7 @@ SyncSpec ds5c1_manual() {
   s.accepted_dc_activation = {0x00, 0x03};                       // E-815
   s.sm2.default_sync_type = 0x00;                                // not in the manual
   s.sm2.accepted_sync_types = {0x00, 0x01, 0x02};                // E-816
-  s.sm2.default_cycle_time_ns = 1000000;                         // not in the manual (as A6B)
+  s.sm2.default_cycle_time_ns = 0;                               // not in the manual
   s.sm2.cycle_time_writable = true;
   s.sm2.shift_time_writable = true;                              // 03h rw
   s.sm2.supported_sync_types = 0x0007;                           // L5672-L5676
@@ -62,7 +61,7 @@ SyncSpec ds5c1_manual() {
   s.sm3 = s.sm2;                                                 // same table, 1C33h-01h 00/01/02h
   s.watchdog = {2, 0};                                           // E-814
   s.pll_lock_timeout_ns = 1000000000;                            // E-803
-  s.missed_sync_threshold = 3;                                   // E-807 names no value: not in manual
+  s.missed_sync_threshold = 0;                                   // E-807 names no value: off
   return s;
 }
 
@@ -86,8 +85,8 @@ SyncSpec ds1000a_manual() {
   s.sm2.error_counters = true;                                   // 0Bh-0Dh, 20h (L4742-L4753)
   s.sm3 = s.sm2;
   s.sm3.accepted_sync_types = {0x00, 0x02, 0x22};                // ETG.1020 1C33h values
-  s.pll_lock_timeout_ns = 1000000000;                            // not in manual: as A6B/DS5C1
-  s.missed_sync_threshold = 3;                                   // not in manual
+  s.pll_lock_timeout_ns = 0;                                     // not in manual: no timeout
+  s.missed_sync_threshold = 0;                                   // not in manual: off
   return s;
 }
 
