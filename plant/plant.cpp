@@ -1,0 +1,534 @@
+#include "plant/plant.hpp"
+
+#include <ode/ode.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "plant/friction.hpp"
+#include "plant/load_profile.hpp"
+#include "plant/motor_torque.hpp"
+#include "plant/thermal_network.hpp"
+
+namespace vdrive::plant {
+
+namespace {
+
+void ensure_ode_thread() {
+  static std::once_flag once;
+  std::call_once(once, [] { dInitODE2(0); });
+  thread_local bool allocated = false;  // ODE wants its per-thread data before the first step
+  if (!allocated) allocated = dAllocateODEDataForThread(dAllocateMaskAll) != 0;
+}
+
+double wrap_pi(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+bool is_linear(const TransmissionSpec& t, JointType joint) {
+  return t.kind == TransmissionKind::ball_screw ||
+         (t.kind == TransmissionKind::belt && joint == JointType::slider);
+}
+
+// Load units per motor radian.
+double load_per_motor_rad(const TransmissionSpec& t, JointType joint) {
+  switch (t.kind) {
+    case TransmissionKind::direct: return 1.0;
+    case TransmissionKind::gearbox: return 1.0 / t.ratio;
+    case TransmissionKind::belt:
+      return joint == JointType::slider ? 0.5 * t.pulley_diameter_m / t.ratio : 1.0 / t.ratio;
+    case TransmissionKind::ball_screw: return t.lead_m / (2.0 * M_PI) / t.ratio;
+  }
+  return 1.0;
+}
+
+[[noreturn]] void fail(const std::string& what) { throw PlantError(what); }
+
+}  // namespace
+
+struct Plant::Impl {
+  struct Body {
+    std::string name;
+    dBodyID id = nullptr;
+    double own_mass = 0;          // without reflected rotor mass (gravity acts on this)
+    bool manual_gravity = false;  // reflected mass added: gravity applied by hand on own_mass
+  };
+  struct Joint {
+    JointSpec spec;
+    dJointID id = nullptr;
+    int parent = -1, child = -1;  // body indices, -1 = world
+    double pos = 0, vel = 0;      // continuous position (hinge angle unwrapped)
+    double prev_raw = 0;
+  };
+  struct Axis {
+    AxisSpec spec;
+    int joint = -1;
+    double r = 1.0;               // load units per motor rad
+    bool two_mass = false;
+    dBodyID rotor = nullptr;
+    dJointID rotor_hinge = nullptr;
+    double rotor_offset = 0, rotor_prev_raw = 0, rotor_angle = 0, rotor_vel = 0;
+    double current = 0, torque = 0, loss_j = 0;
+    ThermalNetwork thermal;
+    Encoder encoder;
+    AxisCommand cmd;
+    double ext_load = 0;
+    std::uint32_t ext_inputs = 0;
+    AxisFeedback fb;
+
+    Axis(const AxisSpec& s, double step, double angle0)
+        : spec(s), thermal(s.motor, step), encoder(s.encoder, angle0) {}
+    double motor_angle(const Joint& j) const { return two_mass ? rotor_angle : j.pos / r; }
+    double motor_vel(const Joint& j) const { return two_mass ? rotor_vel : j.vel / r; }
+    double twist(const Joint& j) const {  // dead-zone-filtered coupling deflection, load units
+      const double d = r * rotor_angle - j.pos, half = 0.5 * spec.transmission.backlash;
+      return d > half ? d - half : d < -half ? d + half : 0.0;
+    }
+  };
+
+  PlantDescription desc;
+  dWorldID world = nullptr;
+  std::vector<Body> bodies;
+  std::vector<Joint> joints;
+  std::vector<Axis> axes;
+  double dt = 0;
+  std::int64_t steps = 0;
+  Nanos step_ns = 0;
+
+  ~Impl() {
+    if (world) dWorldDestroy(world);  // destroys bodies and joints too
+  }
+
+  int body_index(const std::string& name) const {
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      if (bodies[i].name == name) return static_cast<int>(i);
+    return -1;
+  }
+
+  void read_joint(Joint& j) {
+    if (j.spec.type == JointType::hinge) {
+      const double raw = dJointGetHingeAngle(j.id);
+      j.pos += wrap_pi(raw - j.prev_raw);
+      j.prev_raw = raw;
+      j.vel = dJointGetHingeAngleRate(j.id);
+    } else {
+      j.pos = dJointGetSliderPosition(j.id);
+      j.vel = dJointGetSliderPositionRate(j.id);
+    }
+  }
+  void read_rotor(Axis& a) {
+    const double raw = dJointGetHingeAngle(a.rotor_hinge);
+    a.rotor_angle += wrap_pi(raw - a.rotor_prev_raw);
+    a.rotor_prev_raw = raw;
+    a.rotor_vel = dJointGetHingeAngleRate(a.rotor_hinge);
+  }
+
+  void build();
+  void add_axis_load_body(AxisSpec& a, std::size_t index);
+  void create_joint(Joint& j);
+  void place_initial(const Joint& j);
+  void substep(double t);
+  void finish_step();
+};
+
+void Plant::Impl::add_axis_load_body(AxisSpec& a, std::size_t index) {
+  // An axis with no machine joint drives its own inertia on a hinge about z, centred on the axis.
+  BodySpec b;
+  b.name = a.name + ".load";
+  b.mass_kg = 1.0;
+  b.position_m = {static_cast<double>(index), -10.0, 0.0};
+  const double j = a.load_inertia_kgm2 > 0 ? a.load_inertia_kgm2 : a.motor.rotor_inertia_kgm2;
+  b.inertia_kgm2 = {j, j, j};
+  desc.bodies.push_back(b);
+  JointSpec js;
+  js.name = a.name + ".joint";
+  js.child = b.name;
+  js.anchor_m = b.position_m;
+  js.axis = {0, 0, 1};
+  desc.joints.push_back(js);
+  a.joint = js.name;
+}
+
+void Plant::Impl::create_joint(Joint& j) {
+  const JointSpec& s = j.spec;
+  dBodyID child = bodies[j.child].id;
+  dBodyID parent = j.parent >= 0 ? bodies[j.parent].id : nullptr;
+  if (s.type == JointType::hinge) {
+    j.id = dJointCreateHinge(world, nullptr);
+    dJointAttach(j.id, child, parent);
+    dJointSetHingeAnchor(j.id, s.anchor_m[0], s.anchor_m[1], s.anchor_m[2]);
+    dJointSetHingeAxis(j.id, s.axis[0], s.axis[1], s.axis[2]);
+    if (s.lower_stop) dJointSetHingeParam(j.id, dParamLoStop, *s.lower_stop);
+    if (s.upper_stop) dJointSetHingeParam(j.id, dParamHiStop, *s.upper_stop);
+    dJointSetHingeParam(j.id, dParamBounce, s.stop_bounce);
+    dJointSetHingeParam(j.id, dParamVel, 0.0);
+    dJointSetHingeParam(j.id, dParamFMax, 0.0);
+  } else {
+    j.id = dJointCreateSlider(world, nullptr);
+    dJointAttach(j.id, child, parent);
+    dJointSetSliderAxis(j.id, s.axis[0], s.axis[1], s.axis[2]);
+    if (s.lower_stop) dJointSetSliderParam(j.id, dParamLoStop, *s.lower_stop);
+    if (s.upper_stop) dJointSetSliderParam(j.id, dParamHiStop, *s.upper_stop);
+    dJointSetSliderParam(j.id, dParamBounce, s.stop_bounce);
+    dJointSetSliderParam(j.id, dParamVel, 0.0);
+    dJointSetSliderParam(j.id, dParamFMax, 0.0);
+  }
+}
+
+// Move the joint's child and everything hanging from it to the joint's initial position.
+void Plant::Impl::place_initial(const Joint& j) {
+  if (j.spec.initial == 0.0) return;
+  std::vector<bool> moved(bodies.size(), false);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (int cur = static_cast<int>(b); cur >= 0;) {
+      if (cur == j.child) { moved[b] = true; break; }
+      int parent = -2;
+      for (const Joint& k : joints)
+        if (k.child == cur) parent = k.parent;
+      cur = parent == -2 ? -1 : parent;
+    }
+  }
+  dVector3 axis, anchor{0, 0, 0, 0};
+  dMatrix3 rot;
+  if (j.spec.type == JointType::hinge) {
+    dJointGetHingeAxis(j.id, axis);
+    dJointGetHingeAnchor(j.id, anchor);
+    dRFromAxisAndAngle(rot, axis[0], axis[1], axis[2], j.spec.initial);
+  } else {
+    dJointGetSliderAxis(j.id, axis);
+  }
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (!moved[b]) continue;
+    dBodyID id = bodies[b].id;
+    const dReal* p = dBodyGetPosition(id);
+    if (j.spec.type == JointType::slider) {
+      dBodySetPosition(id, p[0] + axis[0] * j.spec.initial, p[1] + axis[1] * j.spec.initial,
+                       p[2] + axis[2] * j.spec.initial);
+      continue;
+    }
+    dVector3 rel{p[0] - anchor[0], p[1] - anchor[1], p[2] - anchor[2], 0}, out;
+    dMultiply0_331(out, rot, rel);
+    dBodySetPosition(id, anchor[0] + out[0], anchor[1] + out[1], anchor[2] + out[2]);
+    dMatrix3 r2;
+    dMultiply0_333(r2, rot, dBodyGetRotation(id));
+    dBodySetRotation(id, r2);
+  }
+}
+
+void Plant::Impl::build() {
+  if (!(desc.step_s > 0)) fail("plant: step_s must be > 0");
+  if (desc.substeps < 1) fail("plant: substeps must be >= 1");
+  if (desc.axes.empty()) fail("plant: at least one axis is needed");
+  dt = desc.step_s / desc.substeps;
+  step_ns = static_cast<Nanos>(std::llround(desc.step_s * 1e9));
+  for (std::size_t i = 0; i < desc.axes.size(); ++i)
+    if (desc.axes[i].joint.empty()) add_axis_load_body(desc.axes[i], i);
+
+  world = dWorldCreate();
+  dWorldSetGravity(world, desc.gravity[0], desc.gravity[1], desc.gravity[2]);
+  dWorldSetERP(world, 0.2);
+  dWorldSetCFM(world, 1e-10);
+
+  for (const BodySpec& s : desc.bodies) {
+    if (body_index(s.name) >= 0) fail("body '" + s.name + "': duplicate name");
+    if (!(s.mass_kg > 0)) fail("body '" + s.name + "': mass_kg must be > 0");
+    for (double i : s.inertia_kgm2)
+      if (!(i > 0)) fail("body '" + s.name + "': inertia_kgm2 entries must be > 0");
+    Body b{s.name, dBodyCreate(world), s.mass_kg, false};
+    dBodySetPosition(b.id, s.position_m[0], s.position_m[1], s.position_m[2]);
+    dMass m;
+    dMassSetParameters(&m, s.mass_kg, 0, 0, 0, s.inertia_kgm2[0], s.inertia_kgm2[1],
+                       s.inertia_kgm2[2], 0, 0, 0);
+    dBodySetMass(b.id, &m);
+    bodies.push_back(b);
+  }
+  for (const JointSpec& s : desc.joints) {
+    Joint j{s};
+    j.child = body_index(s.child);
+    if (j.child < 0) fail("joint '" + s.name + "': child '" + s.child + "' is not a body");
+    if (!s.parent.empty()) {
+      j.parent = body_index(s.parent);
+      if (j.parent < 0) fail("joint '" + s.name + "': parent '" + s.parent + "' is not a body");
+    }
+    for (const Joint& k : joints)
+      if (k.child == j.child) fail("joint '" + s.name + "': body '" + s.child + "' already has a joint");
+    if (std::hypot(s.axis[0], s.axis[1], s.axis[2]) < 1e-9) fail("joint '" + s.name + "': axis is zero");
+    if (s.type == JointType::hinge && ((s.lower_stop && *s.lower_stop < -M_PI) ||
+                                       (s.upper_stop && *s.upper_stop > M_PI)))
+      fail("joint '" + s.name + "': hinge stops must lie within [-pi, pi]");
+    joints.push_back(j);
+  }
+  for (Joint& j : joints) create_joint(j);
+
+  for (const AxisSpec& s : desc.axes) {
+    const std::string where = "axis '" + s.name + "': ";
+    int ji = -1;
+    for (std::size_t k = 0; k < joints.size(); ++k)
+      if (joints[k].spec.name == s.joint) ji = static_cast<int>(k);
+    if (ji < 0) fail(where + "joint '" + s.joint + "' does not exist");
+    for (const Axis& other : axes)
+      if (other.joint == ji) fail(where + "joint '" + s.joint + "' is already driven by another axis");
+    const JointSpec& js = joints[ji].spec;
+    const TransmissionSpec& t = s.transmission;
+    if (!(t.ratio > 0)) fail(where + "transmission.ratio must be > 0");
+    if (!(t.efficiency > 0 && t.efficiency <= 1)) fail(where + "transmission.efficiency must be in (0, 1]");
+    if (t.backlash < 0 || t.stiffness < 0 || t.damping < 0)
+      fail(where + "transmission backlash/stiffness/damping must be >= 0");
+    if (t.kind == TransmissionKind::ball_screw && !(t.lead_m > 0)) fail(where + "transmission.lead_m must be > 0");
+    if (t.kind == TransmissionKind::belt && js.type == JointType::slider && !(t.pulley_diameter_m > 0))
+      fail(where + "transmission.pulley_diameter_m must be > 0 for a linear belt");
+    if (is_linear(t, js.type) != (js.type == JointType::slider))
+      fail(where + "transmission does not fit joint '" + js.name + "' (ball screw/linear belt need a slider)");
+    if (!(s.motor.rotor_inertia_kgm2 > 0)) fail(where + "motor.rotor_inertia_kgm2 must be > 0");
+    if (!(s.motor.torque_constant_nm_per_a > 0)) fail(where + "motor.torque_constant_nm_per_a must be > 0");
+    if (s.encoder.counts_per_rev == 0) fail(where + "encoder.counts_per_rev must be > 0");
+    if (s.brake.fitted && !(s.brake.holding_torque_nm > 0)) fail(where + "brake.holding_torque_nm must be > 0");
+
+    const double r = load_per_motor_rad(t, js.type);
+    Axis a(s, desc.step_s, js.initial / r);
+    a.joint = ji;
+    a.r = r;
+    a.two_mass = t.stiffness > 0 || t.backlash > 0;
+    if (t.backlash > 0 && t.stiffness <= 0) fail(where + "transmission.stiffness must be > 0 with backlash");
+    Body& load = bodies[joints[ji].child];
+    const double reflected = s.motor.rotor_inertia_kgm2 / (r * r);
+    if (a.two_mass) {
+      // The rotor is its own body on a hinge to the world (no gravity: its centre is on its axis).
+      a.rotor = dBodyCreate(world);
+      dBodySetPosition(a.rotor, static_cast<double>(axes.size()), -20.0, 0.0);
+      const double jr = s.motor.rotor_inertia_kgm2;
+      dMass m;
+      dMassSetParameters(&m, 1e-3, 0, 0, 0, jr, jr, jr, 0, 0, 0);
+      dBodySetMass(a.rotor, &m);
+      dBodySetGravityMode(a.rotor, 0);
+      a.rotor_hinge = dJointCreateHinge(world, nullptr);
+      dJointAttach(a.rotor_hinge, a.rotor, nullptr);
+      dJointSetHingeAnchor(a.rotor_hinge, static_cast<double>(axes.size()), -20.0, 0.0);
+      dJointSetHingeAxis(a.rotor_hinge, 0, 0, 1);
+      dJointSetHingeParam(a.rotor_hinge, dParamVel, 0.0);
+      dJointSetHingeParam(a.rotor_hinge, dParamFMax, 0.0);
+      a.rotor_offset = a.rotor_angle = js.initial / r;
+      // Explicit coupling spring: keep omega * dt well inside the symplectic Euler stability limit.
+      dMass ml;
+      dBodyGetMass(load.id, &ml);
+      double jl = ml.mass;
+      if (js.type == JointType::hinge) {
+        const double n = std::hypot(js.axis[0], js.axis[1], js.axis[2]);
+        jl = 0;
+        for (int i = 0; i < 3; ++i)
+          for (int k = 0; k < 3; ++k) jl += js.axis[i] / n * ml.I[i * 4 + k] * js.axis[k] / n;
+      }
+      const double w2 = t.stiffness * (1.0 / reflected + 1.0 / jl);
+      if (std::sqrt(w2) * dt > 0.5)
+        fail(where + "transmission.stiffness too high for the step: raise substeps");
+    } else if (js.type == JointType::hinge) {
+      // Rigid: the rotor's reflected inertia is added about the joint axis of the load body.
+      dMass m;
+      dBodyGetMass(load.id, &m);
+      const double n = std::hypot(js.axis[0], js.axis[1], js.axis[2]);
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+          m.I[i * 4 + k] += reflected * (js.axis[i] / n) * (js.axis[k] / n);
+      dBodySetMass(load.id, &m);
+    } else {
+      // Rigid linear: reflected rotor mass moves with the load but does not weigh.
+      dMass m;
+      dBodyGetMass(load.id, &m);
+      dMassAdjust(&m, m.mass + reflected);
+      dBodySetMass(load.id, &m);
+      dBodySetGravityMode(load.id, 0);
+      load.manual_gravity = true;
+    }
+    axes.push_back(std::move(a));
+  }
+
+  for (const Joint& j : joints) place_initial(j);
+  for (Joint& j : joints) {
+    j.pos = j.spec.initial;
+    j.prev_raw = j.spec.type == JointType::hinge ? dJointGetHingeAngle(j.id) : 0.0;
+    read_joint(j);
+  }
+  for (Axis& a : axes) {
+    if (a.two_mass) read_rotor(a);
+    a.fb.winding_c = a.thermal.winding_c();
+    a.fb.housing_c = a.thermal.housing_c();
+  }
+  finish_step();
+  for (Axis& a : axes) a.fb.encoder = a.encoder.reading();
+}
+
+void Plant::Impl::substep(double t) {
+  for (Axis& a : axes) {
+    Joint& j = joints[a.joint];
+    const MotorParams& m = a.spec.motor;
+    const TransmissionSpec& tr = a.spec.transmission;
+    const double theta = a.motor_angle(j), w = a.motor_vel(j);
+
+    double torque;
+    if (a.cmd.stepper_open_loop) {
+      a.current = std::clamp(a.cmd.stepper_current, 0.0, 1.0) * m.rated_current_a;
+      torque = stepper_torque(m.rated_torque_nm, std::clamp(a.cmd.stepper_current, 0.0, 1.0),
+                              m.stepper_rotor_teeth, theta, a.cmd.stepper_angle_rad);
+    } else {
+      const double demand = std::clamp(a.cmd.torque_nm, -m.peak_torque_nm, m.peak_torque_nm);
+      a.current = current_loop_step(a.current, demand / m.torque_constant_nm_per_a,
+                                    m.current_bandwidth_hz, dt);
+      torque = m.torque_constant_nm_per_a * a.current;
+      torque *= speed_taper(torque, w, m.max_speed_rad_s);
+    }
+    a.torque = torque;
+    a.loss_j += a.current * a.current * m.winding_resistance_ohm * dt;
+
+    const bool braked = a.spec.brake.fitted && !a.cmd.brake_released;
+    const double ext = load_at(a.spec.load_profile, t) + a.ext_load;
+    double load_force = ext - a.spec.friction.viscous * j.vel;
+    double dry = dry_friction(a.spec.friction, std::abs(j.vel));
+    if (a.two_mass) {
+      const double d = a.twist(j);
+      double fc = tr.stiffness * d;
+      if (d != 0.0) fc += tr.damping * (a.r * a.rotor_vel - j.vel);
+      load_force += fc;
+      dJointAddHingeTorque(a.rotor_hinge, torque - a.r * fc / tr.efficiency);
+      dJointSetHingeParam(a.rotor_hinge, dParamFMax, braked ? a.spec.brake.holding_torque_nm : 0.0);
+    } else {
+      load_force += torque / a.r * tr.efficiency;
+      if (braked) dry += a.spec.brake.holding_torque_nm / a.r;
+    }
+    if (j.spec.type == JointType::hinge) {
+      dJointAddHingeTorque(j.id, load_force);
+      dJointSetHingeParam(j.id, dParamFMax, dry);
+    } else {
+      dJointAddSliderForce(j.id, load_force);
+      dJointSetSliderParam(j.id, dParamFMax, dry);
+    }
+  }
+  for (const Body& b : bodies)
+    if (b.manual_gravity)
+      dBodyAddForce(b.id, b.own_mass * desc.gravity[0], b.own_mass * desc.gravity[1],
+                    b.own_mass * desc.gravity[2]);
+  dWorldStep(world, dt);
+  for (Joint& j : joints) read_joint(j);
+  for (Axis& a : axes)
+    if (a.two_mass) read_rotor(a);
+}
+
+void Plant::Impl::finish_step() {
+  for (Axis& a : axes) {
+    const Joint& j = joints[a.joint];
+    const MotorParams& m = a.spec.motor;
+    AxisFeedback& fb = a.fb;
+    a.thermal.step(a.loss_j / desc.step_s);
+    a.loss_j = 0;
+    fb.motor_angle_rad = a.motor_angle(j);
+    fb.motor_velocity_rad_s = a.motor_vel(j);
+    a.encoder.update(fb.motor_angle_rad);
+    fb.encoder = a.encoder.reading();
+    fb.load_position = j.pos;
+    fb.load_velocity = j.vel;
+    fb.torque_nm = a.torque;
+    fb.current_a = a.current;
+    fb.winding_c = a.thermal.winding_c();
+    fb.housing_c = a.thermal.housing_c();
+
+    const SwitchSpec& sw = a.spec.switches;
+    const double q = j.pos;
+    auto inside = [q](const std::optional<PositionWindow>& w) { return w && q >= w->from && q <= w->to; };
+    std::uint32_t in = a.ext_inputs;
+    if (sw.negative_limit && q <= *sw.negative_limit) in |= input::negative_limit;
+    if (sw.positive_limit && q >= *sw.positive_limit) in |= input::positive_limit;
+    if (inside(sw.home)) in |= input::home;
+    if (inside(sw.probe1)) in |= input::probe1;
+    if (inside(sw.probe2)) in |= input::probe2;
+    fb.inputs = in;
+
+    constexpr double stop_tolerance = 1e-4;
+    if (fb.winding_c > m.winding_limit_c) fb.faults |= fault::overtemperature;
+    if (std::abs(fb.motor_velocity_rad_s) > 1.2 * m.max_speed_rad_s) fb.faults |= fault::overspeed;
+    if ((j.spec.lower_stop && q <= *j.spec.lower_stop + stop_tolerance) ||
+        (j.spec.upper_stop && q >= *j.spec.upper_stop - stop_tolerance))
+      fb.faults |= fault::end_stop;
+    fb.lost_steps = a.cmd.stepper_open_loop
+                        ? stepper_lost_steps(m.stepper_rotor_teeth, fb.motor_angle_rad, a.cmd.stepper_angle_rad)
+                        : 0;
+    if (fb.lost_steps != 0) fb.faults |= fault::lost_steps;
+  }
+}
+
+Plant::Plant(const PlantDescription& description) : impl_(std::make_unique<Impl>()) {
+  ensure_ode_thread();
+  impl_->desc = description;
+  impl_->build();
+}
+Plant::~Plant() = default;
+Plant::Plant(Plant&&) noexcept = default;
+Plant& Plant::operator=(Plant&&) noexcept = default;
+
+std::size_t Plant::axis_count() const { return impl_->axes.size(); }
+
+std::optional<std::size_t> Plant::axis_index(std::string_view name) const {
+  for (std::size_t i = 0; i < impl_->axes.size(); ++i)
+    if (impl_->axes[i].spec.name == name) return i;
+  return std::nullopt;
+}
+
+void Plant::command(std::size_t axis, const AxisCommand& cmd) { impl_->axes.at(axis).cmd = cmd; }
+const AxisFeedback& Plant::feedback(std::size_t axis) const { return impl_->axes.at(axis).fb; }
+
+void Plant::step() {
+  ensure_ode_thread();
+  Impl& p = *impl_;
+  const double t0 = static_cast<double>(p.steps) * p.desc.step_s;
+  for (int s = 0; s < p.desc.substeps; ++s) p.substep(t0 + s * p.dt);
+  ++p.steps;
+  p.finish_step();
+}
+
+std::size_t Plant::advance_to(Nanos t) {
+  std::size_t n = 0;
+  while ((impl_->steps + 1) * impl_->step_ns <= t) {
+    step();
+    ++n;
+  }
+  return n;
+}
+
+Nanos Plant::time() const { return impl_->steps * impl_->step_ns; }
+double Plant::step_s() const { return impl_->desc.step_s; }
+
+void Plant::set_external_load(std::size_t axis, double force) { impl_->axes.at(axis).ext_load = force; }
+void Plant::set_external_input(std::size_t axis, std::uint32_t bits) { impl_->axes.at(axis).ext_inputs = bits; }
+void Plant::clear_faults(std::size_t axis) { impl_->axes.at(axis).fb.faults = 0; }
+
+double Plant::energy() const {
+  const Impl& p = *impl_;
+  double e = 0;
+  auto kinetic = [](dBodyID id) {
+    dMass m;
+    dBodyGetMass(id, &m);
+    const dReal* v = dBodyGetLinearVel(id);
+    const dReal* w = dBodyGetAngularVel(id);
+    const dReal* r = dBodyGetRotation(id);
+    // Angular momentum in body frame: I (R^T w).
+    double wb[3];
+    for (int i = 0; i < 3; ++i) wb[i] = r[0 * 4 + i] * w[0] + r[1 * 4 + i] * w[1] + r[2 * 4 + i] * w[2];
+    double rot = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) rot += wb[i] * m.I[i * 4 + k] * wb[k];
+    return 0.5 * m.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * rot;
+  };
+  for (const Impl::Body& b : p.bodies) {
+    e += kinetic(b.id);
+    const dReal* x = dBodyGetPosition(b.id);
+    e -= b.own_mass * (p.desc.gravity[0] * x[0] + p.desc.gravity[1] * x[1] + p.desc.gravity[2] * x[2]);
+  }
+  for (const Impl::Axis& a : p.axes) {
+    if (!a.two_mass) continue;
+    e += kinetic(a.rotor);
+    const double d = a.twist(p.joints[a.joint]);
+    e += 0.5 * a.spec.transmission.stiffness * d * d;
+  }
+  return e;
+}
+
+}  // namespace vdrive::plant
