@@ -10,7 +10,7 @@ namespace vdrive::master {
 CyclicTask::CyclicTask(Transport& transport, const ProcessImageLayout& layout, std::size_t slave_count, Nanos cycle,
                        std::uint16_t reference_station)
     : transport_(transport), layout_(layout), slave_count_(static_cast<std::uint16_t>(slave_count)), cycle_(cycle),
-      reference_(reference_station), image_(layout.size()), frame_(transport.options().source) {}
+      reply_timeout_(std::max<Nanos>(cycle, 1'000'000)), reference_(reference_station), image_(layout.size()), frame_(transport.options().source) {}
 
 bool CyclicTask::run_cycle() {
   if (outputs_) outputs_(image_);
@@ -27,7 +27,7 @@ bool CyclicTask::run_cycle() {
   (void)frmw;
   ++stats_.cycles;
   // The reply must be back within the cycle; otherwise this cycle's data is lost.
-  if (!transport_.exchange(frame_, std::max<Nanos>(cycle_, 1'000'000))) {
+  if (!transport_.exchange(frame_, reply_timeout_)) {
     ++stats_.lost_frames;
     ++stats_.wrong_wkc;
     stats_.last_wkc = 0;

@@ -41,6 +41,9 @@ public:
   CyclicTask(Transport& transport, const ProcessImageLayout& layout, std::size_t slave_count, Nanos cycle,
              std::uint16_t reference_station = 0);
 
+  // How long a cycle waits for its frame (default: the cycle time, at least 1 ms).
+  void set_reply_timeout(Nanos timeout) { reply_timeout_ = timeout; }
+
   void on_outputs(Callback cb) { outputs_ = std::move(cb); }
   void on_inputs(Callback cb) { inputs_ = std::move(cb); }
 
@@ -69,6 +72,7 @@ private:
   ProcessImageLayout layout_;
   std::uint16_t slave_count_;
   Nanos cycle_;
+  Nanos reply_timeout_;
   std::uint16_t reference_;
   std::vector<std::uint8_t> image_;
   Frame frame_;

@@ -52,6 +52,15 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
   }
   say("Pre-Op");
   result.layout = configure_process_data(master, &result.notes);
+  for (const Slave& s : master.slaves()) {
+    const SlaveProcessData& pd = s.process_data;
+    std::string pdos;
+    for (const auto& p : pd.outputs) pdos += fmt::format(" {:04X}h", p.pdo);
+    pdos += " /";
+    for (const auto& p : pd.inputs) pdos += fmt::format(" {:04X}h", p.pdo);
+    say(fmt::format("slave {}: {} output bytes at {}, {} input bytes at {}, PDOs{} (from {})", s.position, pd.output_bytes,
+                    pd.output_logical, pd.input_bytes, pd.input_logical, pdos, pd.from_coe ? "CoE" : "SII"));
+  }
   say(fmt::format("process image: {} output bytes, {} input bytes, expected LRW working counter {}",
                   result.layout.output_bytes, result.layout.input_bytes, result.layout.expected_wkc));
 
@@ -76,6 +85,7 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
   }
   say("Safe-Op");
   CyclicTask task(master.transport(), result.layout, master.slaves().size(), options.cycle, result.reference_station);
+  if (options.reply_timeout > 0) task.set_reply_timeout(options.reply_timeout);
   task.run(options.safeop_cycles);
   task.request_state(AlState::Op);
   const auto op_cycles = static_cast<std::uint64_t>(std::max<Nanos>(1, options.op_timeout / options.cycle));

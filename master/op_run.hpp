@@ -22,6 +22,7 @@ class Master;
 
 struct OpRunOptions {
   Nanos cycle = 1'000'000;
+  Nanos reply_timeout = 0;                 // per cycle frame; 0: the cycle, at least 1 ms
   bool dc = true;
   std::uint64_t cycles = 1000;
   int drift_frames = 15000;

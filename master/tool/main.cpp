@@ -5,15 +5,20 @@
 //   vdrive-master sdo-write --iface IF --slave N --index 0x6040 [--sub 0] [--type u16] [--complete] VALUE
 //   vdrive-master od-list   --iface IF --slave N [--names]
 //   vdrive-master op        --iface IF [--cycle-us 1000] [--dc] [--cycles N] [--drift-frames N]
+//                           [--rt-priority N] [--reply-timeout-us N]
 //
 // --slave N is the position printed by scan (0 = first slave). Exit status: 0 success, 1
 // link/line error, no slaves or a mailbox/SDO failure (an SDO abort prints its code and text), 2
 // the requested state was not reached or `op` saw wrong working counters, CLI11's own codes for a
 // bad command line. Errors are one line on stderr. Details: docs/master.md.
 #include <CLI/CLI.hpp>
+#include <sched.h>
+#include <sys/mman.h>
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -156,7 +161,20 @@ int run_od_list(const std::string& iface, std::size_t slave, bool names) {
   return 0;
 }
 
-int run_op(const std::string& iface, const vdrive::master::OpRunOptions& options) {
+// SCHED_FIFO and locked memory, so that a loaded host does not delay a cycle by milliseconds.
+void enter_realtime(int priority) {
+  sched_param param{};
+  param.sched_priority = priority;
+  if (::sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+    throw std::runtime_error(std::string("--rt-priority: sched_setscheduler failed: ") + std::strerror(errno));
+  }
+  if (::mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+    throw std::runtime_error(std::string("--rt-priority: mlockall failed: ") + std::strerror(errno));
+  }
+}
+
+int run_op(const std::string& iface, const vdrive::master::OpRunOptions& options, int rt_priority) {
+  if (rt_priority != 0) enter_realtime(rt_priority);
   vdrive::link::RawSocketLink link(iface);
   Master master(link);
   if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on " + iface);
@@ -224,6 +242,12 @@ int main(int argc, char** argv) {
   op->add_option("--cycle-us", cycle_us, "Cycle time in microseconds (default 1000)")->check(CLI::Range(50, 1'000'000));
   op->add_flag("--dc", dc, "Distributed clocks: delays, offsets, drift compensation, SYNC0 at the cycle time");
   op->add_option("--cycles", op_options.cycles, "Cycles to run in Op (default 1000)")->check(CLI::Range(1ull, 100'000'000ull));
+  int rt_priority = 0;
+  op->add_option("--rt-priority", rt_priority, "Run with SCHED_FIFO priority N (1..99) and locked memory")
+      ->check(CLI::Range(1, 99));
+  long long timeout_us = 0;
+  op->add_option("--reply-timeout-us", timeout_us, "Wait this long for a cycle's frame (default: the cycle, at least 1000)")
+      ->check(CLI::Range(50, 1'000'000));
   op->add_option("--drift-frames", op_options.drift_frames, "Static drift compensation frames (default 15000)")
       ->check(CLI::Range(0, 1'000'000));
   CLI11_PARSE(app, argc, argv);
@@ -239,7 +263,8 @@ int main(int argc, char** argv) {
     if (*od_list) return run_od_list(iface, list_slave, names);
     op_options.cycle = cycle_us * 1000;
     op_options.dc = dc;
-    return run_op(iface, op_options);
+    op_options.reply_timeout = timeout_us * 1000;
+    return run_op(iface, op_options, rt_priority);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "vdrive-master: %s\n", e.what());
     return 1;
