@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "vdrive/esi/esi_dictionary.hpp"
 #include "vdrive/esi/esi_export.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -265,6 +267,23 @@ TEST_P(EsiExport, DictionaryHoldsEveryObject) {
   }
 }
 
+// The ETG schema keys SubItems by Name within a DataType and Objects' types by DataType Name:
+// names must be unique (manuals repeat "For manufacturer's use" in one record) and every
+// referenced type declared.
+TEST_P(EsiExport, DataTypeNamesAndSubItemNamesAreUnique) {
+  export_and_parse();
+  const XMLElement* dictionary = device_->FirstChildElement("Profile")->FirstChildElement("Dictionary");
+  if (dictionary == nullptr) GTEST_SKIP() << "empty dictionary";
+  std::set<std::string> types;
+  for (const XMLElement* dt : children(dictionary->FirstChildElement("DataTypes"), "DataType")) {
+    EXPECT_TRUE(types.insert(text_of(dt, "Name")).second) << text_of(dt, "Name");
+    std::set<std::string> subs;
+    for (const XMLElement* s : children(dt, "SubItem")) EXPECT_TRUE(subs.insert(text_of(s, "Name")).second) << text_of(s, "Name");
+  }
+  for (const XMLElement* o : children(dictionary->FirstChildElement("Objects"), "Object"))
+    EXPECT_TRUE(types.count(text_of(o, "Type"))) << text_of(o, "Type");
+}
+
 TEST_P(EsiExport, WithoutOdVariantHasNoDictionaryButTheSameDevice) {
   esi::EsiOptions options;
   options.with_dictionary = false;
@@ -293,6 +312,34 @@ TEST(EsiExportEscaping, MarkupInNamesRoundTrips) {
   EXPECT_STREQ(root->FirstChildElement("Vendor")->FirstChildElement("Name")->GetText(), "X&Y <Z>");
   const XMLElement* device = root->FirstChildElement("Descriptions")->FirstChildElement("Devices")->FirstChildElement("Device");
   EXPECT_STREQ(device->FirstChildElement("Name")->GetText(), "A<B> & \"C\" 'D'");
+}
+
+}  // namespace
+
+namespace {
+
+// ETG.2000 Access element: ro/rw/wo, with the states as restriction attributes when not all.
+TEST(EsiAccessText, StatesBecomeRestrictions) {
+  using namespace vdrive::od::access;
+  EXPECT_EQ(vdrive::esi::access_text(kReadAll).access, "ro");
+  EXPECT_EQ(vdrive::esi::access_text(kReadAll).read_restrictions, "");
+  const auto rw = vdrive::esi::access_text(kReadAll | kWriteAll);
+  EXPECT_EQ(rw.access, "rw");
+  EXPECT_EQ(rw.write_restrictions, "");
+  const auto preop = vdrive::esi::access_text(kReadAll | kWritePreOp);
+  EXPECT_EQ(preop.access, "rw");
+  EXPECT_EQ(preop.write_restrictions, "PreOP");
+  EXPECT_EQ(vdrive::esi::access_text(kReadAll | kWritePreOp | kWriteSafeOp).write_restrictions, "PreOP_SafeOP");
+  EXPECT_EQ(vdrive::esi::access_text(kReadAll | kWriteSafeOp | kWriteOp).write_restrictions, "SafeOP_OP");
+  const auto wo = vdrive::esi::access_text(kWriteAll);
+  EXPECT_EQ(wo.access, "wo");
+  EXPECT_EQ(vdrive::esi::access_text(kReadOp).read_restrictions, "OP");
+  // No documented access (the manual prints "-"): no Access element at all.
+  EXPECT_EQ(vdrive::esi::access_text(0).access, "");
+  EXPECT_EQ(vdrive::esi::pdo_mapping_text(kRxPdoMappable), "R");
+  EXPECT_EQ(vdrive::esi::pdo_mapping_text(kTxPdoMappable), "T");
+  EXPECT_EQ(vdrive::esi::pdo_mapping_text(kRxPdoMappable | kTxPdoMappable), "RT");
+  EXPECT_EQ(vdrive::esi::pdo_mapping_text(kReadAll), "");
 }
 
 }  // namespace

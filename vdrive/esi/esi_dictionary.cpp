@@ -59,22 +59,38 @@ std::vector<std::uint8_t> limit_bytes(std::int64_t value, std::uint16_t bit_leng
 }
 
 // <Info> of a single value: MinData, MaxData, DefaultData (hex, little-endian), or DefaultString
-// for a visible string. Nothing when the dictionary knows none of them.
-void write_value_info(XmlWriter& xml, const EntryDesc& e) {
+// for a visible string. With `always` an empty <Info/> is written when the dictionary knows none
+// of them (a SubItem of an object's Info must have one).
+void write_value_info(XmlWriter& xml, const EntryDesc& e, bool always) {
   const bool numeric = e.type != od::DataType::VisibleString && e.type != od::DataType::OctetString;
   const bool has_limits = numeric && (e.min || e.max);
-  if (!has_limits && e.default_value.empty()) return;
+  std::string text;
+  if (e.type == od::DataType::VisibleString) {
+    text.assign(e.default_value.begin(), e.default_value.end());
+    while (!text.empty() && text.back() == '\0') text.pop_back();
+  }
+  const bool has_default = e.type == od::DataType::VisibleString ? !text.empty() : !e.default_value.empty();
+  if (!has_limits && !has_default && !always) return;
   xml.open("Info");
   if (e.type == od::DataType::VisibleString) {
-    std::string text(e.default_value.begin(), e.default_value.end());
-    while (!text.empty() && text.back() == '\0') text.pop_back();
-    xml.element("DefaultString", text);
+    if (has_default) xml.element("DefaultString", text);
   } else {
     if (has_limits && e.min) xml.element("MinData", hex_binary(limit_bytes(*e.min, e.bit_length)));
     if (has_limits && e.max) xml.element("MaxData", hex_binary(limit_bytes(*e.max, e.bit_length)));
-    if (!e.default_value.empty()) xml.element("DefaultData", hex_binary(e.default_value));
+    if (has_default) xml.element("DefaultData", hex_binary(e.default_value));
   }
   xml.close();
+}
+
+// SubItem names must be unique within a type (schema key SubItemKey); manuals repeat names such
+// as "For manufacturer's use", so a repeated name gets its subindex appended.
+std::vector<std::string> subitem_names(const ObjectDesc& o) {
+  std::map<std::string, int> uses;
+  for (const EntryDesc& e : o.entries) ++uses[e.name];
+  std::vector<std::string> names;
+  for (const EntryDesc& e : o.entries)
+    names.push_back(uses[e.name] > 1 || e.name.empty() ? fmt::format("{} (sub {:02X}h)", e.name, e.subindex) : e.name);
+  return names;
 }
 
 void write_flags(XmlWriter& xml, const EntryDesc& e) {
@@ -109,6 +125,7 @@ void write_data_types(XmlWriter& xml, const od::Dictionary& d) {
   for (const ObjectDesc& o : d.objects()) {
     if (!is_complex(o)) continue;
     const Layout l = layout(o);
+    const std::vector<std::string> names = subitem_names(o);
     xml.open("DataType");
     xml.element("Name", complex_type_name(o));
     xml.element("BitSize", std::to_string(l.bit_size));
@@ -116,7 +133,7 @@ void write_data_types(XmlWriter& xml, const od::Dictionary& d) {
       const EntryDesc& e = o.entries[i];
       xml.open("SubItem");
       xml.element("SubIdx", std::to_string(e.subindex));
-      xml.element("Name", e.name);
+      xml.element("Name", names[i]);
       xml.element("Type", entry_type(e));
       xml.element("BitSize", std::to_string(e.bit_length));
       xml.element("BitOffs", std::to_string(l.offsets[i]));
@@ -137,17 +154,18 @@ void write_object(XmlWriter& xml, const ObjectDesc& o) {
     const EntryDesc& e = o.entries.front();
     xml.element("Type", entry_type(e));
     xml.element("BitSize", std::to_string(e.bit_length));
-    write_value_info(xml, e);
+    write_value_info(xml, e, false);
     write_flags(xml, e);
   } else {
     xml.element("Type", complex_type_name(o));
     xml.element("BitSize", std::to_string(layout(o).bit_size));
     // One SubItem per entry, in DataType SubItem order, each with its own values.
+    const std::vector<std::string> names = subitem_names(o);
     xml.open("Info");
-    for (const EntryDesc& e : o.entries) {
+    for (std::size_t i = 0; i < o.entries.size(); ++i) {
       xml.open("SubItem");
-      xml.element("Name", e.name);
-      write_value_info(xml, e);
+      xml.element("Name", names[i]);
+      write_value_info(xml, o.entries[i], true);
       xml.close();
     }
     xml.close();

@@ -10,7 +10,9 @@ namespace vdrive::esi {
 
 class XmlWriter {
 public:
-  XmlWriter() : printer_(nullptr, /*compact=*/false) { printer_.PushHeader(false, true); }
+  XmlWriter() : printer_(nullptr, /*compact=*/false) {
+    printer_.PushDeclaration("xml version=\"1.0\" encoding=\"UTF-8\"");
+  }
 
   void open(const char* name) { printer_.OpenElement(name); }
   void attr(const char* name, const std::string& value) { printer_.PushAttribute(name, value.c_str()); }
