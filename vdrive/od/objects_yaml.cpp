@@ -53,7 +53,7 @@ public:
   }
   YAML::Node required(std::string_view key) const {
     YAML::Node v = get(key);
-    if (!v.IsDefined()) fail({}, std::string(key) + ": missing");
+    if (!v.IsDefined()) throw_at(file_, node_.Mark(), field(key) + ": missing");
     return v;
   }
   bool present_and_not_null(std::string_view key) const {
@@ -223,7 +223,7 @@ EntryDesc parse_entry(const YAML::Node& node, const std::string& file, const std
   }
 
   const YAML::Node def = f.get("default");
-  if (!def.IsDefined()) f.fail({}, "default: missing");
+  if (!def.IsDefined()) f.required("default");
   if (is_string(e.type)) {
     if (f.present_and_not_null("min") || f.present_and_not_null("max")) f.fail("min", "a string has no range");
     if (!def.IsNull() && !def.IsScalar()) f.fail("default", "expected a string or null");
