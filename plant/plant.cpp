@@ -517,15 +517,25 @@ double Plant::energy() const {
       for (int k = 0; k < 3; ++k) rot += wb[i] * m.I[i * 4 + k] * wb[k];
     return 0.5 * m.mass * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * rot;
   };
+  // ODE's velocities after a step belong half a step back (its integrator is a leapfrog: v then
+  // x with the new v). Potential energy is therefore taken at x - v dt/2, where the velocities
+  // live; otherwise the readout would wobble by ~w*dt/2 although the motion conserves energy.
+  const double half = 0.5 * p.dt;
   for (const Impl::Body& b : p.bodies) {
     e += kinetic(b.id);
     const dReal* x = dBodyGetPosition(b.id);
-    e -= b.own_mass * (p.desc.gravity[0] * x[0] + p.desc.gravity[1] * x[1] + p.desc.gravity[2] * x[2]);
+    const dReal* v = dBodyGetLinearVel(b.id);
+    double pe = 0;
+    for (int i = 0; i < 3; ++i) pe -= b.own_mass * p.desc.gravity[i] * (x[i] - v[i] * half);
+    e += pe;
   }
   for (const Impl::Axis& a : p.axes) {
     if (!a.two_mass) continue;
     e += kinetic(a.rotor);
-    const double d = a.twist(p.joints[a.joint]);
+    const Impl::Joint& j = p.joints[a.joint];
+    const double twist = a.r * (a.rotor_angle - a.rotor_vel * half) - (j.pos - j.vel * half);
+    const double h = 0.5 * a.spec.transmission.backlash;
+    const double d = twist > h ? twist - h : twist < -h ? twist + h : 0.0;
     e += 0.5 * a.spec.transmission.stiffness * d * d;
   }
   return e;

@@ -89,7 +89,8 @@ public:
   void set_external_load(std::size_t axis, double force);  // added to the load profile
   void set_external_input(std::size_t axis, std::uint32_t input_bits);  // ORed into inputs
   void clear_faults(std::size_t axis);
-  // Mechanical energy of the world: kinetic + gravitational + coupling springs (J).
+  // Mechanical energy of the world: kinetic + gravitational + coupling springs (J), evaluated at
+  // the half step where ODE's velocities live (see plant.cpp).
   double energy() const;
 
 private:
