@@ -186,7 +186,9 @@ void write_dc(XmlWriter& xml, const ProductProfile& p) {
   const profile::SyncSpec& s = p.sync;
   if (!s.free_run && !s.sm2_event && !s.dc_sync0 && !s.dc_sync1) return;
   xml.open("Dc");
-  const std::string cycles = cycle_times_text(s);
+  std::string cycles = cycle_times_text(s);
+  for (const auto& limit : s.mode_min_cycle)
+    cycles += fmt::format("; mode {} (6060h) needs at least {} us", limit.mode, limit.min_cycle_ns / 1000.0);
   if (!cycles.empty()) xml.comment("Cycle times the drive accepts (1C32h-02h): " + cycles);
   if (s.free_run) op_mode(xml, "FreeRun", "Free Run", 0x0000);
   if (s.sm2_event) op_mode(xml, "SM2", "SM-Synchron", 0x0000);
