@@ -143,13 +143,14 @@ TEST_P(EsiExport, DefaultPdosAreTheProfiles) {
   expect_pdos(children(device_, "RxPdo"), profile_.rx_pdos);
   expect_pdos(children(device_, "TxPdo"), profile_.tx_pdos);
   // Every mapping object the product has is offered, assigned by default or not.
-  std::size_t rx_objects = profile_.rx_pdos.size(), tx_objects = profile_.tx_pdos.size();
-  for (const auto& r : profile_.pdo_rules.rx_objects)
-    if (r.index != (profile_.rx_pdos.empty() ? 0 : profile_.rx_pdos[0].index)) ++rx_objects;
-  for (const auto& r : profile_.pdo_rules.tx_objects)
-    if (r.index != (profile_.tx_pdos.empty() ? 0 : profile_.tx_pdos[0].index)) ++tx_objects;
-  if (profile_.rx_pdos.size() <= 1) EXPECT_EQ(children(device_, "RxPdo").size(), rx_objects);
-  if (profile_.tx_pdos.size() <= 1) EXPECT_EQ(children(device_, "TxPdo").size(), tx_objects);
+  auto offered = [](const std::vector<profile::PdoSpec>& defaults, const std::vector<profile::PdoObjectRule>& all) {
+    std::set<std::uint16_t> indexes;
+    for (const auto& d : defaults) indexes.insert(d.index);
+    for (const auto& r : all) indexes.insert(r.index);
+    return indexes.size();
+  };
+  EXPECT_EQ(children(device_, "RxPdo").size(), offered(profile_.rx_pdos, profile_.pdo_rules.rx_objects));
+  EXPECT_EQ(children(device_, "TxPdo").size(), offered(profile_.tx_pdos, profile_.pdo_rules.tx_objects));
 }
 
 TEST_P(EsiExport, MailboxAdvertisesWhatTheProductSupports) {
