@@ -212,5 +212,44 @@ TEST(PlantMotion, AdvanceToRunsWholeStepsUpToTheCallersTime) {
   EXPECT_EQ(p.advance_to(1'250'000), 1u);
 }
 
+TEST(PlantMotion, LinearBeltAxisAcceleratesAtForceOverMassWithReflectedRotor) {
+  // Horizontal belt axis: 4 kg carriage, 30 mm pulley behind a 3:1 reduction.
+  PlantDescription d;
+  d.step_s = 250e-6;
+  d.substeps = 4;
+  d.bodies.push_back({.name = "carriage", .mass_kg = 4.0, .position_m = {0, 0, 0}, .inertia_kgm2 = {0.01, 0.01, 0.01}});
+  JointSpec j;
+  j.name = "x";
+  j.type = JointType::slider;
+  j.child = "carriage";
+  j.axis = {1, 0, 0};
+  d.joints.push_back(j);
+  AxisSpec a;
+  a.name = "x";
+  a.joint = "x";
+  a.motor = test::test_motor(2e-5);
+  a.transmission = {.kind = TransmissionKind::belt, .ratio = 3.0, .pulley_diameter_m = 0.03};
+  d.axes.push_back(a);
+  Plant p(d);
+  const double r = 0.015 / 3.0, t = 0.5;  // m per motor rad
+  const double expected = (t / r) / (4.0 + 2e-5 / (r * r));
+  run(p, 0.01, torque(t));
+  const double v0 = p.feedback(0).load_velocity;
+  run(p, 0.2, torque(t));
+  EXPECT_NEAR((p.feedback(0).load_velocity - v0) / 0.2, expected, 0.01 * expected);
+  EXPECT_NEAR(p.feedback(0).motor_angle_rad * r, p.feedback(0).load_position, 1e-12);
+}
+
+TEST(PlantMotion, ExternalLoadProfileActsOnTheLoad) {
+  PlantDescription d = rotary(3e-4);
+  d.axes[0].load_profile = {{0.0, 0.0}, {0.1, 0.0}, {0.1, -0.4}, {1.0, -0.4}};
+  Plant p(d);
+  run(p, 0.1, torque(0.4));  // accelerates while the profile is 0
+  const double v = p.feedback(0).load_velocity;
+  EXPECT_GT(v, 1.0);
+  run(p, 0.2, torque(0.4));  // now the load torque cancels the motor's
+  EXPECT_NEAR(p.feedback(0).load_velocity, v, 0.01 * v);
+}
+
 }  // namespace
 }  // namespace vdrive::plant
