@@ -147,6 +147,37 @@ TEST_F(OpLine, ThreeDrivesReachOpWithDcAndExactWorkingCounters) {
   EXPECT_TRUE(result.ok());
 }
 
+// Oscillators that start apart and run at different rates: the offsets bring the system times
+// together, and the FRMW of 0x0910 in every cycle keeps them together.
+TEST(OpLineDc, DriftingClocksStayWithin100NsWhileCycling) {
+  network::NetworkOptions options;
+  options.dc_models = {{20.0, 5'000'000'000}, {-50.0, 123'456}, {35.0, 900'000'000'000}};
+  test::VirtualLine line({"a6b", "ds5c1", "ds1000a"}, options);
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 3u);
+  master.set_mailbox_timeout(20'000'000);
+  ASSERT_TRUE(master.request_state(AlState::PreOp));
+  const ProcessImageLayout layout = configure_process_data(master);
+  const DcResult dc = configure_dc(master, DcOptions{3000});
+  ASSERT_EQ(dc.dc_slaves, 3u);
+  CyclicTask task(master.transport(), layout, 3, 1'000'000, dc.reference_station);
+  task.run(2000);  // 2 s: 70 ppm apart would be 140 us without compensation
+  EXPECT_EQ(task.stats().wrong_wkc, 0u);
+  Frame frame;
+  for (std::size_t i = 0; i < 3; ++i) {
+    frame.add(Command::FPRD, static_cast<std::uint8_t>(0x40 + i), station_address(master.slaves()[i].station, reg::kDcSystemTime), 8);
+  }
+  ASSERT_TRUE(master.transport().transceive(frame));
+  auto value = [&](std::size_t i) {
+    std::uint64_t v = 0;
+    for (int b = 0; b < 8; ++b) v |= static_cast<std::uint64_t>(frame.data(i)[b]) << (8 * b);
+    return static_cast<std::int64_t>(v);
+  };
+  for (std::size_t i = 1; i < 3; ++i) {
+    EXPECT_NEAR(static_cast<double>(value(i) - value(0) - master.slaves()[i].dc_delay), 0.0, 100.0) << "slave " << i;
+  }
+}
+
 TEST_F(OpLine, CyclicTaskCountsAWrongWorkingCounter) {
   ASSERT_TRUE(master.request_state(AlState::PreOp));
   ProcessImageLayout layout = configure_process_data(master);

@@ -22,8 +22,8 @@ public:
   // Wire time of one round trip for a frame of typical size at 100 Mbit/s (there and back).
   static constexpr Nanos kRoundTrip = 20'000;
 
-  explicit VirtualLine(std::vector<std::string> products)
-      : products_(std::move(products)), network_(products_, clock_), ends_(link::make_loopback_pair()) {}
+  explicit VirtualLine(std::vector<std::string> products, const network::NetworkOptions& options = {})
+      : products_(std::move(products)), network_(products_, clock_, options), ends_(link::make_loopback_pair()) {}
 
   bool send(std::span<const std::uint8_t> frame) override { return ends_.first->send(frame); }
 
