@@ -6,6 +6,10 @@
 //   m.scan();                           // count, reset, address 0x1001.., read SII of every slave
 //   m.slaves()[0].info.name;            // identity, mailbox, SMs, PDOs from the SII
 //   m.request_state(AlState::PreOp);    // configures mailbox SM0/SM1 from the SII first
+//   m.sdo(0).upload_value<std::uint32_t>(0x1018, 1);   // CoE (coe.hpp)
+//
+// Process data, DC and the cyclic task are free functions over a Master: process_data.hpp,
+// dc.hpp, cyclic_task.hpp; op_run.hpp chains them all the way to Op (docs/master.md).
 //
 // Errors on the wire (no reply after retries) throw MasterError; a slave that refuses a state is
 // not an exception: request_state() returns false and the slave carries its AL status code.
