@@ -95,5 +95,9 @@ if echo "$expert" | grep -q "Errors ("; then
   echo "$expert"
   fail "tshark reports error-level expert info in mailbox traffic"
 fi
-echo "tshark: $mailbox mailbox frames decoded, none malformed, no expert errors"
+# The whole capture too (process data, DC, state changes): cheap, and the same rule.
+if tshark -r "$WORK/op.pcapng" -q -z expert,error 2>/dev/null | grep -q "Errors ("; then
+  fail "tshark reports error-level expert info in the capture"
+fi
+echo "tshark: $mailbox mailbox frames decoded, none malformed, no expert errors in any frame"
 echo "PASS"
