@@ -68,7 +68,7 @@ struct Plant::Impl {
     bool two_mass = false;
     dBodyID rotor = nullptr;
     dJointID rotor_hinge = nullptr;
-    double rotor_offset = 0, rotor_prev_raw = 0, rotor_angle = 0, rotor_vel = 0;
+    double rotor_prev_raw = 0, rotor_angle = 0, rotor_vel = 0;
     double current = 0, torque = 0, loss_j = 0;
     ThermalNetwork thermal;
     Encoder encoder;
@@ -308,7 +308,7 @@ void Plant::Impl::build() {
       dJointSetHingeAxis(a.rotor_hinge, 0, 0, 1);
       dJointSetHingeParam(a.rotor_hinge, dParamVel, 0.0);
       dJointSetHingeParam(a.rotor_hinge, dParamFMax, 0.0);
-      a.rotor_offset = a.rotor_angle = js.initial / r;
+      a.rotor_angle = js.initial / r;  // zero twist at start
       // Explicit coupling spring: keep omega * dt well inside the symplectic Euler stability limit.
       dMass ml;
       dBodyGetMass(load.id, &ml);
