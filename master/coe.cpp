@@ -24,6 +24,11 @@ constexpr std::size_t kMinSegmentData = 7;  // a segment's data field is at leas
 constexpr std::uint8_t kInfoOdListReq = 1, kInfoObjDescReq = 3, kInfoEntryDescReq = 5, kInfoError = 7,
                        kInfoIncomplete = 0x80;
 
+// Bounds against a slave that never stops sending: 64 unrelated CoE messages while waiting for
+// an SDO response; 4096 SDO information fragments (an OD list of 65536 indexes needs ~540 in a
+// 256-byte mailbox).
+constexpr int kMaxUnrelatedReplies = 64, kMaxInfoFragments = 4096;
+
 std::uint16_t u16(std::span<const std::uint8_t> p, std::size_t at) {
   return static_cast<std::uint16_t>(p[at] | (p[at + 1] << 8));
 }
@@ -81,7 +86,8 @@ std::string_view sdo_abort_text(std::uint32_t code) {
 }
 
 std::span<const std::uint8_t> SdoClient::sdo_reply(std::uint16_t index, std::uint8_t subindex) {
-  for (;;) {
+  // A slave that keeps sending other CoE services is not answering: give up after a bound.
+  for (int others = 0; others < kMaxUnrelatedReplies; ++others) {
     const auto reply = mailbox_.receive(mailbox_type::kCoE);
     if (reply.size() < kSegmentHeader || (reply[1] >> 4) != kServiceSdoResponse) {
       if (reply.size() >= 2 && (reply[1] >> 4) == kServiceSdoRequest && reply.size() >= kSdoHeader &&
@@ -93,6 +99,8 @@ std::span<const std::uint8_t> SdoClient::sdo_reply(std::uint16_t index, std::uin
     if ((reply[2] >> 5) == kAbort && reply.size() >= kSdoHeader) throw SdoAbort(index, subindex, u32(reply, 6));
     return reply;
   }
+  throw MailboxError(fmt::format("slave 0x{:04X}: no SDO response to {:04X}:{:02X} among {} CoE messages",
+                                 mailbox_.config().station, index, subindex, kMaxUnrelatedReplies));
 }
 
 std::vector<std::uint8_t> SdoClient::upload(std::uint16_t index, std::uint8_t subindex, bool complete_access) {
@@ -205,7 +213,7 @@ std::vector<std::uint8_t> SdoClient::info_request(std::uint8_t opcode, std::span
   mailbox_.send(mailbox_type::kCoE, req);
   // The reply may come in fragments: "incomplete" set and fragments-left counting down to 0.
   std::vector<std::uint8_t> out;
-  for (;;) {
+  for (int messages = 0; messages < kMaxInfoFragments; ++messages) {
     const auto reply = mailbox_.receive(mailbox_type::kCoE);
     if (reply.size() < 6 || (reply[1] >> 4) != kServiceSdoInfo) continue;
     const std::uint8_t op = reply[2] & 0x7F;
@@ -216,6 +224,8 @@ std::vector<std::uint8_t> SdoClient::info_request(std::uint8_t opcode, std::span
     out.insert(out.end(), reply.begin() + 6, reply.end());
     if ((reply[2] & kInfoIncomplete) == 0) return out;
   }
+  throw MailboxError(fmt::format("slave 0x{:04X}: SDO information reply not complete after {} messages",
+                                 mailbox_.config().station, kMaxInfoFragments));
 }
 
 std::vector<std::uint16_t> SdoClient::od_list(std::uint16_t list_type) {
