@@ -17,11 +17,16 @@ namespace vdrive::plant {
 
 namespace {
 
-void ensure_ode_thread() {
+// ODE wants its per-thread data in every thread that steps a world (allocated once per thread).
+void ensure_ode_thread_data() {
+  thread_local bool allocated = false;
+  if (!allocated) allocated = dAllocateODEDataForThread(dAllocateMaskAll) != 0;
+}
+
+void ensure_ode() {
   static std::once_flag once;
   std::call_once(once, [] { dInitODE2(0); });
-  thread_local bool allocated = false;  // ODE wants its per-thread data before the first step
-  if (!allocated) allocated = dAllocateODEDataForThread(dAllocateMaskAll) != 0;
+  ensure_ode_thread_data();
 }
 
 double wrap_pi(double a) { return std::remainder(a, 2.0 * M_PI); }
@@ -456,7 +461,7 @@ void Plant::Impl::finish_step() {
 }
 
 Plant::Plant(const PlantDescription& description) : impl_(std::make_unique<Impl>()) {
-  ensure_ode_thread();
+  ensure_ode();
   impl_->desc = description;
   impl_->build();
 }
@@ -476,7 +481,7 @@ void Plant::command(std::size_t axis, const AxisCommand& cmd) { impl_->axes.at(a
 const AxisFeedback& Plant::feedback(std::size_t axis) const { return impl_->axes.at(axis).fb; }
 
 void Plant::step() {
-  ensure_ode_thread();
+  ensure_ode_thread_data();
   Impl& p = *impl_;
   const double t0 = static_cast<double>(p.steps) * p.desc.step_s;
   for (int s = 0; s < p.desc.substeps; ++s) p.substep(t0 + s * p.dt);

@@ -283,6 +283,7 @@ PlantDescription parse_plant_yaml(std::string_view text, const std::string& orig
 
   std::set<std::string> body_names, joint_names, axis_names;
   if (const YAML::Node bodies = plant["bodies"]) {
+    if (!bodies.IsSequence()) r.fail(bodies, "plant.bodies", "must be a list");
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const std::string p = "plant.bodies[" + std::to_string(i) + "]";
       const YAML::Node n = bodies[i];
@@ -302,6 +303,7 @@ PlantDescription parse_plant_yaml(std::string_view text, const std::string& orig
     }
   }
   if (const YAML::Node joints = plant["joints"]) {
+    if (!joints.IsSequence()) r.fail(joints, "plant.joints", "must be a list");
     for (std::size_t i = 0; i < joints.size(); ++i) {
       const std::string p = "plant.joints[" + std::to_string(i) + "]";
       const YAML::Node n = joints[i];

@@ -82,6 +82,8 @@ TEST(PlantYaml, ErrorsNameFileLineAndField) {
             "p.yaml:4:24: plant.axes[0].motor.product: unknown product 'a6b'");
   EXPECT_EQ(error_of("plant:\n  gravity: [0, 0]\n  axes: [{name: x}]\n"),
             "p.yaml:2:12: plant.gravity: must be a list of 3 numbers");
+  EXPECT_EQ(error_of("plant:\n  bodies: {name: b}\n  axes: [{name: x}]\n"),
+            "p.yaml:2:11: plant.bodies: must be a list");
   EXPECT_EQ(error_of("plant: [\n"), "p.yaml:2:1: end of sequence flow not found");
   EXPECT_EQ(error_of("plant:\n  axes:\n    - name: x\n      transmission: {backlash: 0.01}\n"),
             "p.yaml:4:21: plant.axes[0].transmission.stiffness: must be > 0 when backlash is set");
