@@ -276,6 +276,20 @@ TEST(OdDictionaryFile, AnIncompleteIdentityRecordIsCompleted) {
   EXPECT_TRUE(d.find(0x1018, 3)->synthesized);
 }
 
+TEST(OdDictionaryFile, FieldsThatMayBeNullMayBeLeftOut) {
+  // Only product, objects, index, name, object_code, entries, subindex, name and data_type.
+  TempObjectsDir dir("odtest",
+                     "product: odtest\nobjects:\n"
+                     "  - {index: 0x2200, name: \"Bare\", object_code: VAR, entries: [{subindex: 0, name: \"Bare\", data_type: U8}]}\n");
+  const Dictionary d = Dictionary::load(test_product(), dir.path());
+  const EntryDesc* e = d.find(0x2200, 0);
+  ASSERT_NE(e, nullptr);
+  EXPECT_EQ(e->access, access::kReadAll);   // access null = ro
+  EXPECT_FALSE(e->min.has_value());
+  EXPECT_EQ(e->default_value, (std::vector<std::uint8_t>{0}));
+  EXPECT_EQ(e->manual_line, 0);
+}
+
 struct BadFile {
   const char* what;
   std::string yaml;

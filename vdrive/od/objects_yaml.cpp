@@ -207,7 +207,7 @@ EntryDesc parse_entry(const YAML::Node& node, const std::string& file, const std
   e.index = index;
   e.subindex = static_cast<std::uint8_t>(f.integer("subindex", 0, 0xFF));
   e.name = f.optional_string("name_en").value_or(f.string("name"));
-  e.manual_line = static_cast<int>(f.integer("line", 0, std::numeric_limits<int>::max()));
+  e.manual_line = f.get("line").IsDefined() ? static_cast<int>(f.integer("line", 0, std::numeric_limits<int>::max())) : 0;
   const std::optional<std::string> type_text = f.optional_string("data_type");
   if (!type_text) f.fail("data_type", "not given; the dictionary needs a type for every entry");
   const std::optional<DataType> type = parse_data_type(*type_text);
@@ -222,8 +222,8 @@ EntryDesc parse_entry(const YAML::Node& node, const std::string& file, const std
     e.synthesized = s.Scalar() == "true";
   }
 
-  const YAML::Node def = f.get("default");
-  if (!def.IsDefined()) f.required("default");
+  // Absent = null, as for every field that may be null.
+  const YAML::Node def = f.present_and_not_null("default") ? f.get("default") : YAML::Node(YAML::NodeType::Null);
   if (is_string(e.type)) {
     if (f.present_and_not_null("min") || f.present_and_not_null("max")) f.fail("min", "a string has no range");
     if (!def.IsNull() && !def.IsScalar()) f.fail("default", "expected a string or null");
@@ -273,7 +273,7 @@ ObjectDesc parse_object(const YAML::Node& node, const std::string& file, const s
   o.index = static_cast<std::uint16_t>(f.integer("index", 0, 0xFFFF));
   o.name = f.optional_string("name_en").value_or(f.string("name"));
   o.code = parse_object_code(f);
-  f.integer("line", 0, std::numeric_limits<int>::max());
+  if (f.get("line").IsDefined()) f.integer("line", 0, std::numeric_limits<int>::max());
   const YAML::Node entries = f.required("entries");
   if (!entries.IsSequence() || entries.size() == 0) f.fail("entries", "expected a non-empty list");
   o.entries.reserve(entries.size());
@@ -313,10 +313,13 @@ ObjectsYaml parse_objects_yaml(std::string_view text, const std::string& file) {
     entries += o.entries.size();
     out.objects.push_back(std::move(o));
   }
-  if (top.integer("object_count", 0, 0xFFFF) != static_cast<std::int64_t>(out.objects.size()))
+  // The counts are optional (hand-written test files); when present they must be right.
+  if (top.get("object_count").IsDefined() &&
+      top.integer("object_count", 0, 0xFFFF) != static_cast<std::int64_t>(out.objects.size()))
     top.fail("object_count", "says " + top.get("object_count").Scalar() + ", the file has " +
                                  std::to_string(out.objects.size()));
-  if (top.integer("entry_count", 0, 0xFFFFFF) != static_cast<std::int64_t>(entries))
+  if (top.get("entry_count").IsDefined() &&
+      top.integer("entry_count", 0, 0xFFFFFF) != static_cast<std::int64_t>(entries))
     top.fail("entry_count", "says " + top.get("entry_count").Scalar() + ", the file has " + std::to_string(entries));
   return out;
 }
