@@ -168,7 +168,7 @@ std::uint16_t access_bits(const Fields& f) {
     else if (*access != "ro") f.fail("access", "expected ro, rw or null, got '" + *access + "'");
   }
   // A6B Attribute X: "read-only or otherwise unchangeable objects, or unsupported objects"
-  // (manual L34160). Four rw entries carry it (606Ah, 607Bh:01/02, 6082h): not writable.
+  // (manual L34150). Four rw entries carry it (606Ah, 607Bh:01/02, 6082h): not writable.
   const YAML::Node attributes = f.get("attributes");
   if (writable && attributes.IsMap()) {
     const YAML::Node effect = attributes["takes_effect"];
