@@ -44,9 +44,8 @@ void SyncObjects::load_power_on_values() {
     const profile::SyncObjectSpec& o = index == kOutputSync ? spec.sm2 : spec.sm3;
     if (const od::ObjectDesc* object = objects_.dictionary().find(index))
       set(index, 0, object->max_subindex());   // 20h: "Number of sub-objects"
-    set(index, sub::kSyncType, o.default_sync_type);
-    set(index, sub::kCycleTime, o.default_cycle_time_ns);
-    set(index, sub::kShiftTime, o.default_shift_time_ns);
+    // 01h-03h are settings: their power-up values are the dictionary's defaults or what the
+    // parameter store restored (A6B keeps 1C32h-01h/02h in EEPROM), never overwritten here.
     set(index, sub::kSupportedTypes, o.supported_sync_types);
     set(index, sub::kMinCycleTime, o.min_cycle_time_ns);
     set(index, sub::kCalcAndCopyTime, o.calc_and_copy_time_ns);

@@ -15,8 +15,9 @@ class SyncObjects {
 public:
   SyncObjects(od::ObjectStore& objects, const SyncRules& rules);
 
-  // The values the drive holds at power-up: sync types, cycle and shift times, supported types,
-  // minimum cycle, calc-and-copy and delay times (from the rules), counters 0.
+  // The values the drive computes at power-up (after the store got its defaults and stored
+  // parameters): supported types, minimum cycle, calc-and-copy and delay times (from the rules),
+  // counters 0. Sync type, cycle and shift time (settings) are left as the store has them.
   void load_power_on_values();
 
   std::uint64_t get(std::uint16_t index, std::uint8_t subindex) const;
