@@ -13,6 +13,7 @@
 #include "vdrive/firmware/mailbox/mailbox_module.hpp"
 #include "vdrive/firmware/mailbox_sm_check.hpp"
 #include "vdrive/firmware/pdi.hpp"
+#include "vdrive/firmware/sync/sync_module.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/od/object_store.hpp"
 
@@ -55,6 +56,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   // The firmware's parts, in service order. Each issue's module is added here.
   void install_modules() {
     modules.push_back(std::make_unique<mailbox::MailboxModule>(context));
+    modules.push_back(std::make_unique<sync::SyncModule>(context));
   }
 
   std::uint32_t serviced_events() const {
