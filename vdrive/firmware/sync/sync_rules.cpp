@@ -1,8 +1,6 @@
 // Sync rules per product: ProductProfile::sync when loaded, else the manuals' values below.
 #include "vdrive/firmware/sync/sync_rules.hpp"
 
-#include <algorithm>
-
 namespace vdrive::firmware::sync {
 namespace {
 
@@ -111,7 +109,7 @@ SyncSpec generic() {
 
 SyncRules rules_for(const profile::ProductProfile& product) {
   SyncRules r;
-  const bool loaded = product.sync.cycle_max_ns != 0;
+  const bool loaded = !product.sync.cycle_times_ns.empty() || product.sync.cycle_step_ns != 0;
   if (product.id == "a6b") {
     r.spec = loaded ? product.sync : a6b_manual();
     r.mode_follows_dc_activation = true;
@@ -136,10 +134,7 @@ SyncRules rules_for(const profile::ProductProfile& product) {
 }
 
 bool cycle_time_accepted(const profile::SyncSpec& spec, std::uint32_t cycle_ns) {
-  if (cycle_ns < spec.cycle_min_ns || cycle_ns > spec.cycle_max_ns) return false;
-  if (spec.cycle_step_ns != 0) return cycle_ns % spec.cycle_step_ns == 0;
-  return std::find(spec.cycle_times_ns.begin(), spec.cycle_times_ns.end(), cycle_ns) !=
-         spec.cycle_times_ns.end();
+  return spec.accepts_cycle(cycle_ns);
 }
 
 }  // namespace vdrive::firmware::sync

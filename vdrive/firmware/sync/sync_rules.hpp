@@ -1,8 +1,8 @@
 #pragma once
 // The synchronisation rules of one product in the form the sync module applies them.
 //
-// rules_for() takes ProductProfile::sync (SyncSpec) when the profile carries it (its accepted
-// cycle range is set); otherwise it falls back to the values in sync_rules.cpp, each read from the
+// rules_for() takes ProductProfile::sync (SyncSpec) when the profile carries it (a cycle list or
+// step is set); otherwise it falls back to the values in sync_rules.cpp, each read from the
 // product's manual (one place for all constants). A few behaviours SyncSpec does not describe are
 // added here per product: the A6B rewrites 1C32h/1C33h-01h from 0981h at PreOp->SafeOp, the
 // counters' subindexes differ (the A6B and DS5C1 swap 0Bh/0Ch against ETG.1020), the A6B takes
