@@ -90,9 +90,10 @@ public:
     write(static_cast<std::uint16_t>(base + 6), {static_cast<std::uint8_t>(enable ? 1 : 0)});
   }
 
-  // SM0/SM1 as the SII declares them (what SOEM and TwinCAT write).
+  // The SyncManagers as the SII declares them (what SOEM and TwinCAT write): SM0/SM1, and SM2/SM3
+  // sized for the default PDO mapping, which PreOp->SafeOp checks (docs/process-data.md).
   void configure_mailbox_from_sii() {
-    for (int n = 0; n < 2; ++n) {
+    for (int n = 0; n < static_cast<int>(product.sync_managers.size()); ++n) {
       const auto& sm = product.sync_managers.at(static_cast<std::size_t>(n));
       configure_sm(n, sm.start, sm.length, sm.control, true);
     }

@@ -13,6 +13,7 @@
 #include "vdrive/firmware/mailbox/mailbox_module.hpp"
 #include "vdrive/firmware/mailbox_sm_check.hpp"
 #include "vdrive/firmware/pdi.hpp"
+#include "vdrive/firmware/pdo/process_data_module.hpp"
 #include "vdrive/firmware/sync/sync_module.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/od/object_store.hpp"
@@ -56,6 +57,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   // The firmware's parts, in service order. Each issue's module is added here.
   void install_modules() {
     modules.push_back(std::make_unique<mailbox::MailboxModule>(context));
+    modules.push_back(std::make_unique<pdo::ProcessDataModule>(context));
     modules.push_back(std::make_unique<sync::SyncModule>(context));
   }
 

@@ -32,6 +32,9 @@ class ProcessDataModule final : public FirmwareModule {
 public:
   explicit ProcessDataModule(FirmwareContext& context);
 
+  // The store was reset to defaults (and stored parameters loaded): default assignment where the
+  // dictionary has none; no mapping in effect until the next PreOp->SafeOp.
+  void power_on(Nanos now) override;
   std::uint32_t serviced_events() const override;
   void on_events(std::uint32_t events, Nanos now) override;
   CheckResult check_transition(AlState from, AlState to) override;
