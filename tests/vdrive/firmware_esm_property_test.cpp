@@ -43,7 +43,11 @@ TEST_P(FirmwareEsmProperty, RandomTrafficKeepsTheInvariants) {
   const std::set<std::uint16_t> codes = {
       product.al_codes.invalid_transition, product.al_codes.unknown_state,
       product.al_codes.bootstrap_not_supported, product.al_codes.invalid_mailbox_config,
-      product.al_codes.invalid_boot_mailbox_config};
+      product.al_codes.invalid_boot_mailbox_config,
+      // PreOp->SafeOp process-data checks (docs/process-data.md)
+      product.al_codes.invalid_output_config, product.al_codes.invalid_input_config,
+      product.al_codes.invalid_input_mapping, product.al_codes.invalid_output_mapping,
+      product.al_codes.invalid_watchdog_config, product.al_codes.sync_watchdog};
 
   std::mt19937 rng(0xEC47);
   auto byte = [&] { return static_cast<std::uint8_t>(rng() & 0xFF); };
@@ -74,7 +78,9 @@ TEST_P(FirmwareEsmProperty, RandomTrafficKeepsTheInvariants) {
       const int n = static_cast<int>(rng() % 4);
       const auto base = static_cast<std::uint16_t>(0x0800 + 8 * n);
       apwr(static_cast<std::uint16_t>(base + 6), {0x00});
-      if (rng() % 2 == 0 && n < static_cast<int>(product.sync_managers.size())) {
+      // A good layout is enabled, so all four SMs (SafeOp checks SM2/SM3 too) are often good at once.
+      const bool good = rng() % 2 == 0 && n < static_cast<int>(product.sync_managers.size());
+      if (good) {
         const auto& sm = product.sync_managers[static_cast<std::size_t>(n)];
         apwr(base, {static_cast<std::uint8_t>(sm.start), static_cast<std::uint8_t>(sm.start >> 8),
                     static_cast<std::uint8_t>(sm.length),
@@ -83,7 +89,7 @@ TEST_P(FirmwareEsmProperty, RandomTrafficKeepsTheInvariants) {
         apwr(base, {byte(), static_cast<std::uint8_t>(0x10 + (rng() % 0x10)), byte(), 0x00,
                     byte()});
       }
-      apwr(static_cast<std::uint16_t>(base + 6), {static_cast<std::uint8_t>(rng() % 2)});
+      apwr(static_cast<std::uint16_t>(base + 6), {static_cast<std::uint8_t>(good ? 1 : rng() % 2)});
     } else {
       apwr(0x0806 + 8 * static_cast<std::uint16_t>(rng() % 2), {static_cast<std::uint8_t>(1)});
     }
