@@ -132,6 +132,8 @@ struct TestProduct {
     product = profile::load_profile("ds1000a");
     product.id = "coetest";
     product.coe_details |= 0x20;
+    product.rx_pdos.clear();  // the test dictionary has no PDO objects
+    product.tx_pdos.clear();
     std::filesystem::create_directories(dir.path + "/coetest");
     std::ofstream y(dir.path + "/coetest/objects.yaml");
     y << "product: coetest\nmanual: \"none\"\ntable_lines: \"-\"\nobject_count: 2\nentry_count: 5\nnotes: []\nobjects:\n"

@@ -13,6 +13,7 @@ namespace vdrive::firmware::mailbox {
 namespace {
 constexpr std::uint32_t sm_event(int n) { return 1u << (al_event::kSmShift + n); }
 constexpr std::uint16_t kProtocolCoE = 0x0004;  // SII mailbox protocol bit2
+constexpr std::size_t kMinimumWindow = kHeaderSize + 16;  // header + an SDO frame with margin
 
 std::size_t larger(std::uint16_t a, const std::optional<std::uint16_t>& b) {
   return std::max<std::size_t>(a, b.value_or(0));
@@ -91,7 +92,9 @@ void MailboxModule::service(Nanos now) {
   sm1_start_ = context_.pdi.read_u16(sm_register(1, reg::sm::kStart));
   sm1_length_ = context_.pdi.read_u16(sm_register(1, reg::sm::kLength));
   reply_capacity_ = std::min<std::size_t>(sm1_length_, sent_.size());
-  if (reply_capacity_ <= kHeaderSize || sm0_length_ <= kHeaderSize) return;
+  // Smaller windows than any SDO frame are refused at Init->PreOp by the product's rules; the
+  // guard keeps the reply arithmetic safe whatever the master configured.
+  if (reply_capacity_ < kMinimumWindow || sm0_length_ < kMinimumWindow) return;
   send_next();
   while (queue_.size() < kReplySlots && sm_full(0)) {
     receive_request(now);
@@ -179,7 +182,7 @@ void MailboxModule::queue_fragments() {
 }
 
 bool MailboxModule::send_next() {
-  if (reply_capacity_ <= kHeaderSize) return false;
+  if (reply_capacity_ < kMinimumWindow) return false;
   const SmChannel sm1 = context_.pdi.read_sm(1);
   if (!sm1.enabled() || (sm1.status & reg::sm::kMailboxFull) != 0) return false;
   if (emergency_count_ > 0) {
@@ -240,7 +243,7 @@ void MailboxModule::service_repeat_request() {
   sm1_start_ = sm1.start;
   sm1_length_ = sm1.length;
   reply_capacity_ = std::min<std::size_t>(sm1_length_, sent_.size());
-  if (!resend.empty() && reply_capacity_ > kHeaderSize) {
+  if (!resend.empty() && reply_capacity_ >= kMinimumWindow) {
     // Copy first: write_sm1 rotates sent_/previous_.
     std::copy(resend.begin(), resend.end(), resend_.begin());
     write_sm1(std::span<const std::uint8_t>(resend_.data(), resend.size()));
