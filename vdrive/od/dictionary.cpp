@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "vdrive/od/default_pdo_objects.hpp"
 #include "vdrive/od/identity_objects.hpp"
 #include "vdrive/od/objects_yaml.hpp"
 #include "vdrive/profile/embedded_profiles.hpp"
@@ -73,6 +74,8 @@ Dictionary Dictionary::load(const profile::ProductProfile& profile, const std::s
   }
   // A product without objects.yaml still answers its identity (a profile under test, a new product).
   apply_identity(d.objects_, profile.identity);
+  // Without objects.yaml there are no PDO objects to fill.
+  if (!source.text.empty()) apply_default_pdo_configuration(d.objects_, profile);
 
   // One flat value array: each entry's bytes at its offset, in index/subindex order.
   std::uint32_t offset = 0;

@@ -34,62 +34,10 @@ ProcessDataModule::ProcessDataModule(FirmwareContext& context)
       codes_(context.profile.al_codes),
       ram_end_(reg::kRegisterEnd + 1024u * context.profile.esc.ram_kib),
       sm_count_(std::clamp<int>(context.profile.esc.sm_count, 0, kMaxSyncManagers)) {
-  apply_default_assignment();
   install_pdo_write_rules(ctx_.objects, ctx_.esm, limits_);
 }
 
-namespace {
-
-void put_le(std::span<std::uint8_t> to, std::uint32_t value) {
-  for (std::size_t i = 0; i < to.size(); ++i) {
-    to[i] = static_cast<std::uint8_t>(i < 4 ? value >> (8 * i) : 0);
-  }
-}
-
-// True when index:00h exists and is 0 after the reset to defaults: the dictionary has no factory
-// value (the manual prints none; a null default reads 0), so the profile's comes in.
-bool no_default(const od::ObjectStore& objects, std::uint16_t index) {
-  return objects.dictionary().find(index, 0) != nullptr && read_unsigned(objects, index, 0) == 0;
-}
-
-}  // namespace
-
-// Where the dictionary has no factory value for 1C12h/1C13h or a mapping object (A6B 1C12h/1C13h,
-// DS5C1 1600h/1A00h: the manuals print none, A6B L5181), the profile's default PDOs give it
-// (SII/ESI rx_pdos/tx_pdos with their SyncManager), as the real drive ships.
-void ProcessDataModule::apply_default_assignment() {
-  od::ObjectStore& objects = ctx_.objects;
-  const od::Dictionary& dict = objects.dictionary();
-  const auto apply = [&](std::uint16_t assign, const std::vector<profile::PdoSpec>& pdos,
-                         std::uint8_t sm) {
-    for (const profile::PdoSpec& pdo : pdos) {
-      if (!no_default(objects, pdo.index)) continue;
-      std::uint8_t n = 0;
-      for (const profile::PdoEntrySpec& e : pdo.entries) {
-        const od::EntryDesc* slot = dict.find(pdo.index, static_cast<std::uint8_t>(n + 1));
-        if (slot == nullptr) break;
-        put_le(objects.raw(*slot), MappingEntry::encode(e.index, e.subindex, e.bit_length));
-        ++n;
-      }
-      put_le(objects.raw(*dict.find(pdo.index, 0)), n);
-    }
-    if (!no_default(objects, assign)) return;
-    std::uint8_t n = 0;
-    for (const profile::PdoSpec& pdo : pdos) {
-      if (pdo.sync_manager != sm) continue;
-      const od::EntryDesc* slot = dict.find(assign, static_cast<std::uint8_t>(n + 1));
-      if (slot == nullptr) break;
-      put_le(objects.raw(*slot), pdo.index);
-      ++n;
-    }
-    put_le(objects.raw(*dict.find(assign, 0)), n);
-  };
-  apply(kRxAssign, ctx_.profile.rx_pdos, kOutputsSm);
-  apply(kTxAssign, ctx_.profile.tx_pdos, kInputsSm);
-}
-
 void ProcessDataModule::power_on(Nanos /*now*/) {
-  apply_default_assignment();
   running_ = false;
   outputs_valid_ = false;
   cycle_by_sync_ = false;

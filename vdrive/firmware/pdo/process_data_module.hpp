@@ -32,8 +32,9 @@ class ProcessDataModule final : public FirmwareModule {
 public:
   explicit ProcessDataModule(FirmwareContext& context);
 
-  // The store was reset to defaults (and stored parameters loaded): default assignment where the
-  // dictionary has none; no mapping in effect until the next PreOp->SafeOp.
+  // The store was reset to defaults (the dictionary carries the factory PDO configuration, see
+  // od/default_pdo_objects.hpp) and stored parameters loaded: no mapping in effect until the next
+  // PreOp->SafeOp.
   void power_on(Nanos now) override;
   std::uint32_t serviced_events() const override;
   void on_events(std::uint32_t events, Nanos now) override;
@@ -59,7 +60,6 @@ private:
   void on_watchdog();
   void read_outputs();
   void write_inputs();
-  void apply_default_assignment();
   std::uint16_t code_or(std::uint16_t code, std::uint16_t etg) const { return code ? code : etg; }
 
   FirmwareContext& ctx_;
