@@ -57,8 +57,21 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   // The firmware's parts, in service order. Each issue's module is added here.
   void install_modules() {
     modules.push_back(std::make_unique<mailbox::MailboxModule>(context));
-    modules.push_back(std::make_unique<pdo::ProcessDataModule>(context));
-    modules.push_back(std::make_unique<sync::SyncModule>(context));
+    auto process_data = std::make_unique<pdo::ProcessDataModule>(context);
+    auto synchronisation = std::make_unique<sync::SyncModule>(context);
+    // In DC mode the cycle runs on SYNC0: outputs are taken over and inputs latched there. In SM2
+    // and free-run mode the process-data module exchanges on its own SM2/SM3 events.
+    pdo::ProcessDataModule* pd = process_data.get();
+    sync::SyncModule* sm = synchronisation.get();
+    synchronisation->on_start(
+        [pd](sync::SyncMode mode) { pd->set_cycle_by_sync(mode == sync::SyncMode::DcSync0); });
+    synchronisation->on_cycle([pd, sm](Nanos now) {
+      if (sm->mode() != sync::SyncMode::DcSync0) return;
+      pd->exchange_outputs(now);
+      pd->produce_inputs(now);
+    });
+    modules.push_back(std::move(process_data));
+    modules.push_back(std::move(synchronisation));
   }
 
   std::uint32_t serviced_events() const {
