@@ -372,7 +372,14 @@ Nanos DcUnit::global_time_of(std::uint64_t system) const {
   const Nanos now = clock_.now();
   const auto local0 = static_cast<std::int64_t>(local_time(now));
   const std::uint64_t sys0 = system_time(now);
-  if (system <= sys0) return now;
+  if (system <= sys0) {
+    // Already due: answer the edge's own (past) time, not this clock reading. A caller compares
+    // the deadline with a `now` it read *before* calling; with a real clock that reading is always
+    // a little earlier than ours, so "now" here would never count as due and SYNC0 would stall.
+    const std::uint64_t late = sys0 - system;
+    constexpr auto kFar = static_cast<std::uint64_t>(INT64_MAX / 4);
+    return late > kFar ? INT64_MIN / 4 : now - static_cast<Nanos>(late);
+  }
   // Beyond this horizon (about 146 years) nobody waits for the edge; also keeps the math finite.
   constexpr std::uint64_t kHorizon = std::uint64_t{1} << 62;
   if (system - sys0 > kHorizon) return INT64_MAX;

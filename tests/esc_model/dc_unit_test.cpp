@@ -374,6 +374,37 @@ TEST_F(SyncFixture, FarFutureStartTimeHasNoDeadline) {
 }
 
 // Whatever a master or firmware writes, the unit answers and keeps its invariants.
+// A real clock moves between any two readings. The event loop reads `now`, then asks for the next
+// deadline and ticks when `deadline <= now`: an edge that is already due must therefore report a
+// deadline no later than any earlier reading, or the loop waits forever and SYNC0 never fires
+// (found with SOEM-style DC start-up over a real veth: the servos fell back with 0x002D).
+class TickingClock final : public Clock {
+public:
+  Nanos now() const override { return t_ += 250; }   // 250 ns pass with every reading
+  mutable Nanos t_ = 1'000'000;
+};
+
+TEST(DcUnit, DueEdgeReportsADeadlineNotLaterThanAnEarlierClockReading) {
+  TickingClock clock;
+  DcUnit dc{clock};
+  dc.load_pulse_length(0);
+  const std::uint64_t start = dc.system_time(clock.now()) + 100'000;
+  wr(dc, 0x09A0, 1'000'000u, 4, clock.now());
+  wr(dc, 0x0990, start, 8, clock.now());
+  wr(dc, 0x0981, 0x03u, 1, clock.now());
+
+  clock.t_ += 200'000;  // the start time has passed
+  int fired = 0;
+  for (int loop = 0; loop < 5 && fired == 0; ++loop) {
+    const Nanos now = clock.now();          // as the event loop does: read the time first...
+    const Nanos deadline = dc.next_deadline();
+    ASSERT_NE(deadline, INT64_MAX);
+    EXPECT_LE(deadline, now);               // ...then the due edge must count as due
+    if (deadline <= now && dc.tick(now).sync0) ++fired;
+  }
+  EXPECT_EQ(fired, 1);
+}
+
 TEST(DcUnit, RandomRegisterTrafficKeepsInvariants) {
   VirtualClock clock;
   DcUnit dc(clock);
