@@ -11,67 +11,17 @@ VDRIVE=${1:?path to vdrive}
 BUILD=${2:?build directory}
 MASTER="$BUILD/master/vdrive-master"
 
-skip() { echo "SKIP: $*"; exit 77; }
-fail() { echo "FAIL: $*"; exit 1; }
+# shellcheck source=lib/veth_line.sh
+. "$(dirname "$0")/lib/veth_line.sh"
+require_tools tshark python3
 
-[ "$(id -u)" -eq 0 ] || skip "needs root (network namespaces, veth, raw sockets)"
-for tool in ip tshark python3; do
-  command -v "$tool" >/dev/null || skip "$tool not installed"
-done
-[ -x "$VDRIVE" ] || fail "vdrive not found at $VDRIVE"
-[ -x "$MASTER" ] || fail "vdrive-master not found at $MASTER"
-
-NS="vdt-$$"
-M_IF="vdtm$$"          # master end, root namespace (IFNAMSIZ: at most 15 characters)
-S_IF="vdts$$"          # drives' end, inside $NS
-WORK=$(mktemp -d)
-VDRIVE_PID=""
-TSHARK_PID=""
-
-cleanup() {
-  # Everything this script made, whatever point it reached.
-  [ -n "$TSHARK_PID" ] && kill "$TSHARK_PID" 2>/dev/null && wait "$TSHARK_PID" 2>/dev/null
-  [ -n "$VDRIVE_PID" ] && kill "$VDRIVE_PID" 2>/dev/null && wait "$VDRIVE_PID" 2>/dev/null
-  ip link del "$M_IF" 2>/dev/null
-  ip netns del "$NS" 2>/dev/null
-  rm -rf "$WORK"
-}
-trap cleanup EXIT
-trap 'exit 1' INT TERM
-
-ip netns add "$NS" || fail "cannot create namespace $NS"
-ip link add "$M_IF" type veth peer name "$S_IF" || fail "cannot create veth pair"
-ip link set "$S_IF" netns "$NS" || fail "cannot move $S_IF into $NS"
-ip link set "$M_IF" up
-ip -n "$NS" link set "$S_IF" up
-
-ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --drive a6b --drive ds5c1 --drive ds1000a \
-  >"$WORK/vdrive.log" 2>&1 &
-VDRIVE_PID=$!
-
-tshark -i "$M_IF" -f "ether proto 0x88a4" -w "$WORK/scan.pcapng" >"$WORK/tshark.log" 2>&1 &
-TSHARK_PID=$!
-for _ in $(seq 1 100); do   # tshark reports "Capturing on" once the capture runs
-  grep -q "Capturing on" "$WORK/tshark.log" 2>/dev/null && break
-  kill -0 "$TSHARK_PID" 2>/dev/null || { cat "$WORK/tshark.log"; fail "tshark did not start"; }
-  sleep 0.1
-done
-
-# vdrive needs a moment to open its socket: retry the scan until it answers (or give up).
-ok=""
-for _ in $(seq 1 20); do
-  kill -0 "$VDRIVE_PID" 2>/dev/null || { cat "$WORK/vdrive.log"; fail "vdrive run exited early"; }
-  if "$MASTER" scan --iface "$M_IF" --state preop --json >"$WORK/scan.json" 2>"$WORK/scan.err"; then
-    ok=1
-    break
-  fi
-  sleep 0.25
-done
-[ -n "$ok" ] || { cat "$WORK/scan.err" "$WORK/vdrive.log"; fail "vdrive-master scan did not succeed"; }
+start_line --drive a6b --drive ds5c1 --drive ds1000a
+start_capture "$WORK/scan.pcapng"
+wait_for_line --state preop --json
+cp "$WORK/scan.out" "$WORK/scan.json"
 cat "$WORK/scan.json"
 
-sleep 0.5                     # let tshark write the last frames
-kill -INT "$TSHARK_PID"; wait "$TSHARK_PID" 2>/dev/null; TSHARK_PID=""
+stop_capture
 
 # Identities from the manuals: A6B 1018h (vendor 066Fh), DS5C1 1018h (00000556h/10305070h),
 # DS1000A-EC 1018h (00000973h/00004A39h).

@@ -11,52 +11,12 @@ VDRIVE=${1:?path to vdrive}
 BUILD=${2:?build directory}
 MASTER="$BUILD/master/vdrive-master"
 
-skip() { echo "SKIP: $*"; exit 77; }
-fail() { echo "FAIL: $*"; exit 1; }
+# shellcheck source=lib/veth_line.sh
+. "$(dirname "$0")/lib/veth_line.sh"
+require_tools
 
-[ "$(id -u)" -eq 0 ] || skip "needs root (network namespaces, veth, raw sockets)"
-for tool in ip; do
-  command -v "$tool" >/dev/null || skip "$tool not installed"
-done
-[ -x "$VDRIVE" ] || fail "vdrive not found at $VDRIVE"
-[ -x "$MASTER" ] || fail "vdrive-master not found at $MASTER"
-
-NS="vdt-$$"
-M_IF="vdtm$$"          # master end, root namespace (IFNAMSIZ: at most 15 characters)
-S_IF="vdts$$"          # drives' end, inside $NS
-WORK=$(mktemp -d)
-VDRIVE_PID=""
-TSHARK_PID=""
-
-cleanup() {
-  # Everything this script made, whatever point it reached.
-  [ -n "$TSHARK_PID" ] && kill "$TSHARK_PID" 2>/dev/null && wait "$TSHARK_PID" 2>/dev/null
-  [ -n "$VDRIVE_PID" ] && kill "$VDRIVE_PID" 2>/dev/null && wait "$VDRIVE_PID" 2>/dev/null
-  ip link del "$M_IF" 2>/dev/null
-  ip netns del "$NS" 2>/dev/null
-  rm -rf "$WORK"
-}
-trap cleanup EXIT
-trap 'exit 1' INT TERM
-
-ip netns add "$NS" || fail "cannot create namespace $NS"
-ip link add "$M_IF" type veth peer name "$S_IF" || fail "cannot create veth pair"
-ip link set "$S_IF" netns "$NS" || fail "cannot move $S_IF into $NS"
-ip link set "$M_IF" up
-ip -n "$NS" link set "$S_IF" up
-
-ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --drive a6b --drive ds5c1 --drive ds1000a \
-  >"$WORK/vdrive.log" 2>&1 &
-VDRIVE_PID=$!
-
-
-ok=""
-for _ in $(seq 1 20); do
-  kill -0 "$VDRIVE_PID" 2>/dev/null || { cat "$WORK/vdrive.log"; fail "vdrive run exited early"; }
-  if "$MASTER" scan --iface "$M_IF" >"$WORK/scan.txt" 2>&1; then ok=1; break; fi
-  sleep 0.25
-done
-[ -n "$ok" ] || { cat "$WORK/scan.txt" "$WORK/vdrive.log"; fail "no line answers on $M_IF"; }
+start_line --drive a6b --drive ds5c1 --drive ds1000a
+wait_for_line
 
 expect() {  # expect <exit> <stdout+stderr pattern> <args...>
   local want=$1 pattern=$2; shift 2
