@@ -17,6 +17,7 @@
 #include "common/clock.hpp"
 #include "esc_model/esc.hpp"
 #include "esc_model/sii_eeprom.hpp"
+#include "tests/fuzz/fuzz_records.hpp"
 
 namespace {
 
@@ -92,14 +93,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   std::vector<std::uint8_t> pdu;
   pdu.reserve(2048);
-  std::size_t at = 0;
-  while (at + 3 <= size) {
-    const std::uint8_t flags = data[at];
-    std::size_t len = static_cast<std::size_t>(data[at + 1] | (data[at + 2] << 8)) % 1600;
-    at += 3;
-    if (len > size - at) len = size - at;
-    pdu.assign(data + at, data + at + len);
-    at += len;
+  vdrive::fuzz::for_each_record(data, size, pdu, [&](std::uint8_t flags) {
     if ((flags & 0x01) && pdu.size() >= 2) {
       const std::size_t body = pdu.size() - 2;
       pdu[0] = static_cast<std::uint8_t>(body);
@@ -123,6 +117,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (flags & 0x80) esc->pdi_write(0x1080, buf);
       esc->tick(clock.now());
     }
-  }
+  });
   return 0;
 }

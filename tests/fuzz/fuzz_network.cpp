@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/clock.hpp"
+#include "tests/fuzz/fuzz_records.hpp"
 #include "vdrive/network/network.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -24,14 +25,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   network.power_cycle(0);
   std::vector<std::uint8_t> frame;
   frame.reserve(1600);
-  std::size_t at = 0;
-  while (at + 3 <= size) {
-    const std::uint8_t flags = data[at];
-    std::size_t len = static_cast<std::size_t>(data[at + 1] | (data[at + 2] << 8)) % 1600;
-    at += 3;
-    if (len > size - at) len = size - at;
-    frame.assign(data + at, data + at + len);
-    at += len;
+  vdrive::fuzz::for_each_record(data, size, frame, [&](std::uint8_t flags) {
     if ((flags & 0x01) && frame.size() >= 16) {
       frame[12] = 0x88;
       frame[13] = 0xA4;
@@ -42,6 +36,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     network.process_frame(frame, clock.now());
     clock.advance(static_cast<vdrive::Nanos>(flags >> 1) * 100'000);
     if (network.next_deadline() <= clock.now()) network.tick(clock.now());
-  }
+  });
   return 0;
 }
