@@ -35,7 +35,9 @@ InfoReply info(Bench& b, std::uint8_t opcode, std::vector<std::uint8_t> data) {
     out.opcode = r->at(8) & 0x7F;
     const bool incomplete = (r->at(8) & 0x80) != 0;
     const int left = u16_at(*r, 10);
-    if (expected_left >= 0) EXPECT_EQ(left, expected_left);
+    if (expected_left >= 0) {
+      EXPECT_EQ(left, expected_left);
+    }
     EXPECT_EQ(incomplete, left > 0);
     out.data.insert(out.data.end(), r->begin() + 12, r->end());
     ++out.fragments;

@@ -145,8 +145,12 @@ TEST_P(OdProduct, EveryDefaultLiesInItsRange) {
       const auto raw = s.raw(e);
       for (std::size_t i = 0; i < raw.size(); ++i) v |= std::int64_t{raw[i]} << (8 * i);
       if (is_signed(e.type) && (raw.back() & 0x80)) v -= std::int64_t{1} << (8 * raw.size());
-      if (e.min) EXPECT_GE(v, *e.min) << std::hex << e.index << ":" << int(e.subindex);
-      if (e.max) EXPECT_LE(v, *e.max) << std::hex << e.index << ":" << int(e.subindex);
+      if (e.min) {
+        EXPECT_GE(v, *e.min) << std::hex << e.index << ":" << int(e.subindex);
+      }
+      if (e.max) {
+        EXPECT_LE(v, *e.max) << std::hex << e.index << ":" << int(e.subindex);
+      }
     }
   }
 }
