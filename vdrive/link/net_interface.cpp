@@ -102,4 +102,31 @@ bool wait_readable(int fd, Nanos timeout) {
   return r > 0 && (pfd.revents & (POLLIN | POLLERR)) != 0;
 }
 
+namespace {
+// Monotonic now for timeout bookkeeping inside receive(); a link waits in real time by nature.
+Nanos wall_now() {
+  static const MonotonicClock clock;
+  return clock.now();
+}
+}  // namespace
+
+ReceiveDeadline::ReceiveDeadline(Nanos timeout)
+    : timeout_(timeout), deadline_(timeout > 0 ? wall_now() + timeout : 0) {}
+
+bool ReceiveDeadline::wait(int fd) const {
+  if (timeout_ == 0) return false;
+  Nanos remaining = -1;
+  if (timeout_ > 0) {
+    remaining = deadline_ - wall_now();
+    if (remaining <= 0) return false;
+  }
+  return wait_readable(fd, remaining);
+}
+
+bool is_ethercat(std::span<const std::uint8_t> frame) {
+  constexpr std::size_t kEthHeader = 14;
+  return frame.size() >= kEthHeader &&
+         ((static_cast<std::uint16_t>(frame[12]) << 8) | frame[13]) == kEtherTypeEtherCat;
+}
+
 }  // namespace vdrive::link::net

@@ -12,22 +12,6 @@
 #include "vdrive/link/net_interface.hpp"
 
 namespace vdrive::link {
-namespace {
-
-constexpr std::size_t kEthHeader = 14;  // destination, source, EtherType
-
-bool is_ethercat(std::span<const std::uint8_t> frame) {
-  return frame.size() >= kEthHeader &&
-         ((static_cast<std::uint16_t>(frame[12]) << 8) | frame[13]) == kEtherTypeEtherCat;
-}
-
-// Monotonic now for timeout bookkeeping inside receive(); a link waits in real time by nature.
-Nanos wall_now() {
-  static const MonotonicClock clock;
-  return clock.now();
-}
-
-}  // namespace
 
 RawSocketLink::RawSocketLink(const std::string& interface_name, Options options)
     : name_(interface_name) {
@@ -80,7 +64,7 @@ RawSocketLink::~RawSocketLink() {
 }
 
 std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
-  const Nanos deadline = timeout > 0 ? wall_now() + timeout : 0;
+  const net::ReceiveDeadline deadline(timeout);
   for (;;) {
     sockaddr_ll from{};
     socklen_t from_len = sizeof from;
@@ -91,7 +75,7 @@ std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
     if (n >= 0) {
       if (from.sll_pkttype == PACKET_OUTGOING || from.sll_ifindex != ifindex_) continue;
       const auto len = static_cast<std::size_t>(n);
-      if (len > buf.size() || !is_ethercat(buf.first(len))) {
+      if (len > buf.size() || !net::is_ethercat(buf.first(len))) {
         ++discarded_;
         continue;
       }
@@ -107,14 +91,7 @@ std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
       return 0;
     }
     if (errno != EAGAIN && errno != EWOULDBLOCK) return 0;
-
-    Nanos remaining = -1;
-    if (timeout == 0) return 0;
-    if (timeout > 0) {
-      remaining = deadline - wall_now();
-      if (remaining <= 0) return 0;
-    }
-    if (!net::wait_readable(fd_, remaining)) return 0;
+    if (!deadline.wait(fd_)) return 0;
   }
 }
 

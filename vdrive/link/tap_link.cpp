@@ -15,18 +15,7 @@
 namespace vdrive::link {
 namespace {
 
-constexpr std::size_t kEthHeader = 14;
 constexpr std::size_t kMaxTapFrame = 65536;  // a TAP device's MTU cannot exceed this
-
-bool is_ethercat(std::span<const std::uint8_t> frame) {
-  return frame.size() >= kEthHeader &&
-         ((static_cast<std::uint16_t>(frame[12]) << 8) | frame[13]) == kEtherTypeEtherCat;
-}
-
-Nanos wall_now() {
-  static const MonotonicClock clock;
-  return clock.now();
-}
 
 }  // namespace
 
@@ -76,7 +65,7 @@ TapLink::~TapLink() {
 }
 
 std::size_t TapLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
-  const Nanos deadline = timeout > 0 ? wall_now() + timeout : 0;
+  const net::ReceiveDeadline deadline(timeout);
   for (;;) {
     // One read() returns one whole frame; the second iovec makes an oversize frame visible
     // (the total exceeds the caller's buffer) instead of silently truncating it.
@@ -84,7 +73,7 @@ std::size_t TapLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
     ssize_t n = ::readv(fd_, iov, 2);
     if (n >= 0) {
       const auto len = static_cast<std::size_t>(n);
-      if (len > buf.size() || !is_ethercat(buf.first(len))) {
+      if (len > buf.size() || !net::is_ethercat(buf.first(len))) {
         ++discarded_;
         continue;
       }
@@ -95,14 +84,7 @@ std::size_t TapLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
       throw LinkError(LinkError::Kind::NoInterface, "TAP device '" + name_ + "' disappeared");
     }
     if (errno != EAGAIN && errno != EWOULDBLOCK) return 0;
-
-    Nanos remaining = -1;
-    if (timeout == 0) return 0;
-    if (timeout > 0) {
-      remaining = deadline - wall_now();
-      if (remaining <= 0) return 0;
-    }
-    if (!net::wait_readable(fd_, remaining)) return 0;
+    if (!deadline.wait(fd_)) return 0;
   }
 }
 
