@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace vdrive::profile {
@@ -294,6 +295,92 @@ struct MotorSpec {
   std::uint32_t encoder_counts_per_rev = 0;
 };
 
+// --- CiA402 drive behaviour (profile.yaml key `drive`) --------------------------------------------
+
+// One vendor parameter the drive reads a control-loop setting from, e.g. A6B Pr1.00 = 3100h
+// (0.1/s). SI value = raw * scale; `fallback` (SI) when the product has no such object or it reads 0.
+struct ParameterRef {
+  std::uint16_t index = 0;                            // 0 = the product has none
+  std::uint8_t subindex = 0;
+  double scale = 1.0;
+  double fallback = 0.0;
+};
+
+// Where the drive's control loops take their gains from (issue 5 item 5).
+struct ControlGainSpec {
+  ParameterRef position_gain;                         // Kp, 1/s
+  ParameterRef velocity_gain;                         // velocity-loop bandwidth, Hz
+  ParameterRef velocity_integral;                     // velocity-loop integral time constant, s
+  ParameterRef torque_filter;                         // torque command filter time constant, s
+  ParameterRef inertia_ratio;                         // load / rotor inertia, as a ratio (1.0 = 100 %)
+  ParameterRef velocity_feedforward;                  // 0..1
+};
+
+// The vendor alarm ("24.0", "E-100", "FF02h") the drive raises for each cause it can detect in
+// simulation; "" = the product has no alarm for it (the cause then only shows in the statusword).
+struct DriveAlarmCauses {
+  std::string following_error;                        // position deviation beyond the alarm level
+  std::string overspeed;                              // motor speed beyond the overspeed level
+  std::string overload;                               // motor overload (thermal / I^2 t)
+  std::string overtemperature;                        // drive or motor over-temperature
+  std::string esm_change_while_enabled;               // ESM left Op while Operation enabled
+  std::string no_mode_at_enable;                      // enable with 6060h = 6061h = 0 / bad mode
+  std::string position_command_jump;                  // csp set-point step beyond the speed limit
+  std::string position_range;                         // 607Ah outside 607Bh
+  std::string limit_switch;                           // POT/NOT reached (products that alarm)
+  std::string both_limit_switches;                    // both limits active / wrong direction
+  std::string homing_error;                           // products with a homing alarm
+  std::string encoder_error;                          // encoder communication lost
+  std::string overvoltage;
+  std::string undervoltage;                           // main power lost while enabled
+};
+
+enum class SoftLimitRule : std::uint8_t {
+  Always,          // 607Dh acts whenever min < max (A6B once the position is established)
+  AfterHoming,     // 607Dh acts only after a successful homing (DS1000A-EC, A6B incremental)
+  Ignored,         // listed in the dictionary but not enforced (DS5C1)
+};
+
+enum class PositionRangeRule : std::uint8_t {
+  Full,            // 80000000h..7FFFFFFFh, no wrap (A6B default, DS5C1: 607Bh ignored)
+  Wrap,            // 6064h wraps between 607Bh-01h and -02h when they differ (DS1000A-EC)
+};
+
+enum class LimitSwitchRule : std::uint8_t {
+  QuickStop,       // stop with the quick-stop ramp and refuse motion into the limit (no alarm)
+  Alarm,           // raise DriveAlarmCauses::limit_switch
+  ReportOnly,      // only shown in 60FDh
+};
+
+enum class BrakeRule : std::uint8_t {
+  Automatic,       // the drive releases the brake on enable and engages it on disable
+  Master,          // 60FEh-01h bit 0 under the 60FEh-02h mask (DS1000A-EC)
+};
+
+struct DriveSpec {
+  std::uint32_t control_period_ns = 125000;           // internal position/velocity loop period
+  bool stepper = false;                               // closed-loop stepper (open/closed-loop modes)
+  double stopped_speed_rpm = 30.0;                    // "stopped" for stop sequences
+  std::uint32_t mode_switch_ns = 0;                   // time a mode change takes (6061h lags)
+  bool mode_switch_while_enabled = true;              // false: 6060h changes only act outside OE
+  std::vector<std::pair<std::int8_t, std::int8_t>> forbidden_mode_switches;  // {from, to} in OE
+  bool zero_mode_keeps_previous = true;               // writing 6060h = 0 after a mode keeps it
+  bool halt_aborts_homing = true;
+  bool offsets_honoured = true;                       // 60B0h/60B1h/60B2h added to targets
+  double torque_mode_speed_cap_rpm = 0.0;             // speed cap in tq/cst (0 = 6080h only)
+  double torque_clamp_permille = 0.0;                 // hard torque clamp (0 = motor peak)
+  bool csp_clamps_to_max_speed = false;               // csp step beyond 6080h is clamped (else alarm)
+  SoftLimitRule soft_limits = SoftLimitRule::Always;
+  PositionRangeRule position_range = PositionRangeRule::Full;
+  LimitSwitchRule limit_switches = LimitSwitchRule::QuickStop;
+  BrakeRule brake = BrakeRule::Automatic;
+  bool torque_off_input = false;                      // TO/STO input forces Switch on disabled
+  std::uint32_t servo_on_delay_ns = 0;                // Switched on -> Operation enabled takes this long
+  double overspeed_factor = 1.2;                      // overspeed alarm above factor * 6080h (when no vendor level)
+  ControlGainSpec gains;
+  DriveAlarmCauses alarms;
+};
+
 struct ProductProfile {
   std::string id;                    // "a6b", "ds5c1", "ds1000a"
   std::string title;                 // human name, e.g. "Panasonic MINAS-A6B"
@@ -323,6 +410,7 @@ struct ProductProfile {
   TouchProbeSpec touch_probe;
   std::vector<AlarmSpec> alarms;                      // profiles/<id>/alarms.yaml, in manual order
   std::vector<MotorSpec> motors;                      // profiles/<id>/motors.yaml (at least one entry)
+  DriveSpec drive;                                    // profile.yaml `drive` (issue 5)
 
   // The alarm with vendor code `code` ("80.4", "E-804", "FF80h"), or nullptr.
   const AlarmSpec* find_alarm(std::string_view code) const {
