@@ -357,6 +357,20 @@ enum class BrakeRule : std::uint8_t {
   Master,          // 60FEh-01h bit 0 under the 60FEh-02h mask (DS1000A-EC)
 };
 
+// Vendor levels the drive's own supervision uses (issue 5 item 6).
+struct DriveLevelSpec {
+  ParameterRef following_error;                       // alarm level (A6B 3014h Pr0.14, DS5C1 P0-23, DS1000A 2108h)
+  bool following_error_in_increments = false;         // level in encoder increments (else user units)
+  ParameterRef overspeed_rpm;                         // overspeed alarm level, r/min (0 / none: overspeed_factor * 6080h)
+};
+
+// The DS1000A-EC's closed-loop stepper settings (210Dh-2113h).
+struct StepperSpec {
+  ParameterRef loop_mode;                             // 0 closed, 1 open below switch speed, 2 open
+  ParameterRef switch_speed_rpm;                      // open/closed switch speed
+  ParameterRef run_current;                           // open-loop current, as a fraction of rated (scale to 0..1)
+};
+
 struct DriveSpec {
   std::uint32_t control_period_ns = 125000;           // internal position/velocity loop period
   bool stepper = false;                               // closed-loop stepper (open/closed-loop modes)
@@ -378,6 +392,8 @@ struct DriveSpec {
   std::uint32_t servo_on_delay_ns = 0;                // Switched on -> Operation enabled takes this long
   double overspeed_factor = 1.2;                      // overspeed alarm above factor * 6080h (when no vendor level)
   ControlGainSpec gains;
+  DriveLevelSpec levels;
+  StepperSpec stepper_loop;
   DriveAlarmCauses alarms;
 };
 
