@@ -6,6 +6,7 @@
 // is the mode's business, because each mode halts differently (605Dh, homing aborts).
 // Implementations allocate nothing after construction.
 #include <cstdint>
+#include <string_view>
 
 #include "vdrive/drive/drive_context.hpp"
 #include "vdrive/drive/drive_types.hpp"
@@ -36,6 +37,13 @@ public:
   // Homing: true once when home was found in this step; `position` (current user frame) is where
   // the reference point is, the engine re-references so that it reads 607Ch.
   virtual bool take_home_found(double& /*position*/) { return false; }
+
+  // Cyclic modes: new set-points arrived from the bus (outputs taken over at SYNC0 / SM2 event).
+  virtual void on_cycle(Nanos /*now*/) {}
+
+  // A vendor alarm code (profile alarms.yaml) the mode detected, e.g. A6B Err27.4 for a csp
+  // set-point jump; empty when none. The engine raises it (raising an active alarm is a no-op).
+  virtual std::string_view pending_alarm() { return {}; }
 };
 
 }  // namespace vdrive::drive
