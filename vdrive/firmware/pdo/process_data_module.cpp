@@ -84,16 +84,18 @@ void ProcessDataModule::write_inputs() {
   ctx_.pdi.write(sm3_start_, std::span<const std::uint8_t>(tx_image_.data(), n));
 }
 
-void ProcessDataModule::exchange_outputs(Nanos /*now*/) {
+void ProcessDataModule::exchange_outputs(Nanos now) {
   if (!running_) return;
   read_outputs();
   if (ctx_.esm.state() != AlState::Op || rx_plan_.bytes() == 0) return;
   rx_plan_.scatter(std::span<const std::uint8_t>(rx_image_.data(), rx_plan_.bytes()));
   outputs_valid_ = true;
+  if (after_outputs_) after_outputs_(now);
 }
 
-void ProcessDataModule::produce_inputs(Nanos /*now*/) {
+void ProcessDataModule::produce_inputs(Nanos now) {
   if (!running_ || tx_plan_.bytes() == 0) return;
+  if (before_inputs_) before_inputs_(now);
   tx_plan_.gather(std::span<std::uint8_t>(tx_image_.data(), tx_plan_.bytes()));
   write_inputs();
 }

@@ -18,6 +18,8 @@
 // buffers; no allocation, no locks. Construction allocates (write hooks).
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <utility>
 
 #include "vdrive/firmware/firmware_module.hpp"
 #include "vdrive/firmware/pdi.hpp"
@@ -47,6 +49,13 @@ public:
   void produce_inputs(Nanos now);
   // True while the sync module runs the cycle on SYNC0 (DC mode).
   void set_cycle_by_sync(bool by_sync) { cycle_by_sync_ = by_sync; }
+  // The application around the process data (the CiA402 drive): `after_outputs` runs when new
+  // outputs reached the RxPDO objects (Op), `before_inputs` just before the TxPDO objects are
+  // gathered, so the inputs carry the drive's state at that instant. Construction time only.
+  void set_application(std::function<void(Nanos)> after_outputs, std::function<void(Nanos)> before_inputs) {
+    after_outputs_ = std::move(after_outputs);
+    before_inputs_ = std::move(before_inputs);
+  }
 
   bool running() const { return running_; }                // SafeOp or Op with a valid mapping
   bool outputs_valid() const { return outputs_valid_; }    // Op and outputs received since
@@ -77,6 +86,7 @@ private:
   bool running_ = false;
   bool outputs_valid_ = false;
   bool cycle_by_sync_ = false;
+  std::function<void(Nanos)> after_outputs_, before_inputs_;
 };
 
 }  // namespace vdrive::firmware::pdo
