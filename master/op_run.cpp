@@ -51,6 +51,7 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
     return result;
   }
   say("Pre-Op");
+  if (options.preop) options.preop(master);
   result.layout = configure_process_data(master, &result.notes);
   for (const Slave& s : master.slaves()) {
     const SlaveProcessData& pd = s.process_data;
@@ -86,6 +87,8 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
   say("Safe-Op");
   CyclicTask task(master.transport(), result.layout, master.slaves().size(), options.cycle, result.reference_station);
   if (options.reply_timeout > 0) task.set_reply_timeout(options.reply_timeout);
+  if (options.outputs) task.on_outputs(options.outputs);
+  if (options.inputs) task.on_inputs(options.inputs);
   task.run(options.safeop_cycles);
   task.request_state(AlState::Op);
   const auto op_cycles = static_cast<std::uint64_t>(std::max<Nanos>(1, options.op_timeout / options.cycle));
@@ -99,7 +102,7 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
   task.reset_stats();
   task.run(options.cycles, [&] {
     if (!task.all_in(AlState::Op)) ++result.left_op;
-    return false;
+    return options.done && options.done();
   });
   result.stats = task.stats();
   say(fmt::format("{} cycles in Op, {} wrong working counters, {} lost frames, worst lateness {} us",

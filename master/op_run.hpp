@@ -10,6 +10,7 @@
 // skipped with a note; failures that leave the line short of Op are reported in `error`.
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,13 @@ struct OpRunOptions {
   std::uint64_t safeop_cycles = 100;       // cycles sent in Safe-Op before Op is requested
   Nanos op_timeout = 5'000'000'000;        // until every slave reports Op
   bool back_to_init = true;
+  // The application: `preop` runs once in Pre-Op before the process data is configured (start-up
+  // SDOs, PDO remapping); `outputs`/`inputs` run in every cycle from Safe-Op on, around the frame,
+  // with the whole process image. The cycles in Op end early when `done` returns true.
+  std::function<void(Master&)> preop;
+  std::function<void(std::span<std::uint8_t> image)> outputs;
+  std::function<void(std::span<std::uint8_t> image)> inputs;
+  std::function<bool()> done;
 };
 
 struct OpRunResult {

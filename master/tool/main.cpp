@@ -6,6 +6,12 @@
 //   vdrive-master od-list   --iface IF --slave N [--names]
 //   vdrive-master op        --iface IF [--cycle-us 1000] [--dc] [--cycles N] [--drift-frames N]
 //                           [--rt-priority N] [--reply-timeout-us N]
+//                           [--sine [--amplitude U] [--frequency HZ] [--seconds S]]
+//
+// `op --sine` runs a CiA 402 program in Op (master/cia402_program.hpp): every drive is mapped for
+// csp, enabled, and follows 607Ah = start + U sin(2 pi f t); each drive's largest following error
+// (60F4h) is printed against its window 6065h and exit status 2 reports a drive that faulted,
+// never got enabled or left the window.
 //
 // --slave N is the position printed by scan (0 = first slave). Exit status: 0 success, 1
 // link/line error, no slaves or a mailbox/SDO failure (an SDO abort prints its code and text), 2
@@ -24,6 +30,7 @@
 #include <string>
 
 #include "master/al_state.hpp"
+#include "master/cia402_program.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "master/value_text.hpp"
@@ -173,12 +180,22 @@ void enter_realtime(int priority) {
   }
 }
 
-int run_op(const std::string& iface, const vdrive::master::OpRunOptions& options, int rt_priority) {
+int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int rt_priority,
+           const std::optional<vdrive::master::SineProgramOptions>& sine) {
   if (rt_priority != 0) enter_realtime(rt_priority);
   vdrive::link::RawSocketLink link(iface);
   Master master(link);
   if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on " + iface);
   for (const Slave& s : master.slaves()) std::puts(vdrive::master::describe(s).c_str());
+  std::optional<vdrive::master::SineProgram> program;
+  if (sine) {
+    program.emplace(*sine);
+    options.preop = [&](Master& m) { program->preop(m); };
+    options.outputs = [&](std::span<std::uint8_t> image) { program->outputs(image); };
+    options.inputs = [&](std::span<std::uint8_t> image) { program->inputs(image); };
+    options.done = [&] { return program->done(); };
+    options.cycles = static_cast<std::uint64_t>((sine->settle + sine->motion) / options.cycle) + 5000;
+  }
   const auto result = vdrive::master::run_to_op(master, options, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
   for (const auto& note : result.notes) std::printf("note: %s\n", note.c_str());
   if (!result.reached_op) {
@@ -193,6 +210,18 @@ int run_op(const std::string& iface, const vdrive::master::OpRunOptions& options
     std::fprintf(stderr, "vdrive-master: %llu wrong working counters in %llu cycles\n",
                  static_cast<unsigned long long>(result.stats.wrong_wkc), static_cast<unsigned long long>(result.stats.cycles));
     return 2;
+  }
+  if (program) {
+    bool all_ok = true;
+    for (const auto& r : program->results()) {
+      std::printf("drive 0x%04X: %s, amplitude %.0f, max following error %lld (window 6065h = %u) over %llu cycles, "
+                  "statusword 0x%04X, 603Fh 0x%04X%s%s\n",
+                  r.station, r.ok() ? "ok" : "FAILED", r.amplitude, static_cast<long long>(r.max_following_error),
+                  r.following_window, static_cast<unsigned long long>(r.samples), r.statusword, r.error_code,
+                  r.note.empty() ? "" : ": ", r.note.c_str());
+      all_ok = all_ok && r.ok();
+    }
+    if (!all_ok) return 2;
   }
   return 0;
 }
@@ -250,6 +279,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(50, 1'000'000));
   op->add_option("--drift-frames", op_options.drift_frames, "Static drift compensation frames (default 15000)")
       ->check(CLI::Range(0, 1'000'000));
+  bool sine = false;
+  vdrive::master::SineProgramOptions sine_options;
+  double sine_seconds = 2.0;
+  op->add_flag("--sine", sine, "Enable every CiA 402 drive in csp and command a sine (see docs/master.md)");
+  op->add_option("--amplitude", sine_options.amplitude, "Sine amplitude in user units (default: one motor revolution)")
+      ->check(CLI::Range(0.0, 2e9));
+  op->add_option("--frequency", sine_options.frequency_hz, "Sine frequency in Hz (default 1)")->check(CLI::Range(0.001, 100.0));
+  op->add_option("--seconds", sine_seconds, "How long the sine runs (default 2)")->check(CLI::Range(0.01, 3600.0));
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -264,7 +301,13 @@ int main(int argc, char** argv) {
     op_options.cycle = cycle_us * 1000;
     op_options.dc = dc;
     op_options.reply_timeout = timeout_us * 1000;
-    return run_op(iface, op_options, rt_priority);
+    std::optional<vdrive::master::SineProgramOptions> sine_run;
+    if (sine) {
+      sine_options.cycle = op_options.cycle;
+      sine_options.motion = static_cast<vdrive::Nanos>(sine_seconds * 1e9);
+      sine_run = sine_options;
+    }
+    return run_op(iface, op_options, rt_priority, sine_run);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "vdrive-master: %s\n", e.what());
     return 1;

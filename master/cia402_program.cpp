@@ -1,0 +1,182 @@
+#include "master/cia402_program.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "master/master.hpp"
+#include "master/process_data.hpp"
+
+namespace vdrive::master {
+
+namespace {
+constexpr std::uint32_t entry(std::uint16_t index, std::uint8_t sub, std::uint8_t bits) {
+  return static_cast<std::uint32_t>(index) << 16 | static_cast<std::uint32_t>(sub) << 8 | bits;
+}
+constexpr std::uint32_t kOutputs[] = {entry(0x6040, 0, 16), entry(0x6060, 0, 8), entry(0x607A, 0, 32)};
+constexpr std::uint32_t kInputs[] = {entry(0x6041, 0, 16), entry(0x6061, 0, 8), entry(0x6064, 0, 32),
+                                     entry(0x60F4, 0, 32), entry(0x603F, 0, 16)};
+constexpr std::uint16_t kPdoOut[] = {0x1600};
+constexpr std::uint16_t kPdoIn[] = {0x1A00};
+constexpr std::int8_t kCsp = 8;
+
+template <typename T>
+T get(std::span<const std::uint8_t> image, std::uint32_t offset) {
+  T v{};
+  std::memcpy(&v, image.data() + offset, sizeof(T));
+  return v;
+}
+template <typename T>
+void put(std::span<std::uint8_t> image, std::uint32_t offset, T v) {
+  std::memcpy(image.data() + offset, &v, sizeof(T));
+}
+
+// Byte offset of `object` in one direction of a slave's mapping, or -1.
+long find(const std::vector<PdoMapping>& pdos, std::uint32_t base, std::uint16_t object) {
+  std::uint32_t bit = 0;
+  for (const PdoMapping& p : pdos)
+    for (const std::uint32_t e : p.entries) {
+      if ((e >> 16) == object && (e & 0xFF00) == 0) return static_cast<long>(base + bit / 8);
+      bit += e & 0xFF;
+    }
+  return -1;
+}
+}  // namespace
+
+SineProgram::SineProgram(const SineProgramOptions& options) : options_(options) {}
+
+void SineProgram::preop(Master& master) {
+  master_ = &master;
+  channels_.assign(master.slaves().size(), Channel{});
+  results_.assign(master.slaves().size(), DriveResult{});
+  for (std::size_t i = 0; i < master.slaves().size(); ++i) {
+    DriveResult& r = results_[i];
+    r.station = master.slaves()[i].station;
+    const Slave& s = master.slaves()[i];
+    if (!s.info.has_mailbox() || !(s.info.mailbox_protocols & mailbox_protocol::kCoE)) {
+      r.note = "no CoE";
+      continue;
+    }
+    try {
+      SdoClient& sdo = master.sdo(i);
+      if ((sdo.upload_value<std::uint32_t>(0x1000, 0) & 0xFFFF) != 402) {
+        r.note = "not a CiA 402 device";
+        continue;
+      }
+      assign_pdos(sdo, 0x1C12, {});
+      assign_pdos(sdo, 0x1C13, {});
+      map_pdo(sdo, 0x1600, kOutputs);
+      map_pdo(sdo, 0x1A00, kInputs);
+      assign_pdos(sdo, 0x1C12, kPdoOut);
+      assign_pdos(sdo, 0x1C13, kPdoIn);
+      r.following_window = sdo.upload_value<std::uint32_t>(0x6065, 0);
+      r.amplitude = options_.amplitude;
+      if (r.amplitude <= 0.0) {
+        // One motor revolution in user units: (6092h feed per shaft turn) / (6091h motor turns per shaft turn).
+        const double motor = sdo.upload_value<std::uint32_t>(0x6091, 1), shaft = sdo.upload_value<std::uint32_t>(0x6091, 2);
+        const double feed = sdo.upload_value<std::uint32_t>(0x6092, 1), feed_rev = sdo.upload_value<std::uint32_t>(0x6092, 2);
+        r.amplitude = (feed / std::max(1.0, feed_rev)) / (std::max(1.0, motor) / std::max(1.0, shaft));
+      }
+      channels_[i].mapped = true;
+    } catch (const std::exception& e) {
+      r.note = fmt::format("PDO mapping refused: {}", e.what());
+    }
+  }
+}
+
+void SineProgram::locate(std::span<std::uint8_t> image) {
+  located_ = true;
+  if (!master_) return;
+  std::uint32_t start = UINT32_MAX;
+  for (const Slave& s : master_->slaves()) {
+    if (s.process_data.output_bytes) start = std::min(start, s.process_data.output_logical);
+    if (s.process_data.input_bytes) start = std::min(start, s.process_data.input_logical);
+  }
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    Channel& c = channels_[i];
+    if (!c.mapped) continue;
+    const SlaveProcessData& pd = master_->slaves()[i].process_data;
+    const std::uint32_t out = pd.output_logical - start, in = pd.input_logical - start;
+    const long offsets[] = {find(pd.outputs, out, 0x6040), find(pd.outputs, out, 0x6060), find(pd.outputs, out, 0x607A),
+                            find(pd.inputs, in, 0x6041),   find(pd.inputs, in, 0x6061),   find(pd.inputs, in, 0x6064),
+                            find(pd.inputs, in, 0x60F4),   find(pd.inputs, in, 0x603F)};
+    for (const long o : offsets)
+      if (o < 0 || static_cast<std::size_t>(o) + 4 > image.size() + 2) c.mapped = false;
+    if (!c.mapped) {
+      results_[i].note = "PDO mapping not in effect";
+      continue;
+    }
+    c.cw = offsets[0], c.mode = offsets[1], c.target = offsets[2], c.status = offsets[3];
+    c.mode_display = offsets[4], c.actual = offsets[5], c.following = offsets[6], c.error = offsets[7];
+  }
+}
+
+void SineProgram::outputs(std::span<std::uint8_t> image) {
+  if (!located_) locate(image);
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    Channel& c = channels_[i];
+    if (!c.mapped) continue;
+    c.now += options_.cycle;
+    const std::uint16_t s = c.status_value;
+    std::uint16_t cw = 0x0006;
+    if (s & 0x0008) cw = c.last_cw == 0x0080 ? 0x0000 : 0x0080;     // fault: reset on a 0->1 edge
+    else if ((s & 0x004F) == 0x0040) cw = 0x0006;                    // switch on disabled -> shutdown
+    else if ((s & 0x006F) == 0x0021) cw = 0x0007;                    // ready -> switch on
+    else if ((s & 0x006F) == 0x0023 || (s & 0x006F) == 0x0027) cw = 0x000F;  // switched on -> enable
+    c.last_cw = cw;
+    put<std::uint16_t>(image, c.cw, cw);
+    put<std::int8_t>(image, c.mode, kCsp);
+    std::int32_t target = c.position;  // until enabled, 607Ah follows 6064h (A6B L16813-L16819)
+    if (c.enabled_at >= 0) {
+      const Nanos t = c.now - c.enabled_at - options_.settle;
+      if (t < 0) {
+        target = c.start;
+      } else {
+        const double x = results_[i].amplitude * std::sin(2.0 * std::numbers::pi * options_.frequency_hz * 1e-9 *
+                                                          static_cast<double>(t));
+        target = c.start + static_cast<std::int32_t>(std::lround(x));
+        if (t > options_.motion) c.finished = true;
+      }
+    }
+    put<std::int32_t>(image, c.target, target);
+  }
+}
+
+void SineProgram::inputs(std::span<std::uint8_t> image) {
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    Channel& c = channels_[i];
+    if (!c.mapped) continue;
+    DriveResult& r = results_[i];
+    c.status_value = get<std::uint16_t>(image, c.status);
+    c.position = get<std::int32_t>(image, c.actual);
+    r.statusword = c.status_value;
+    r.error_code = get<std::uint16_t>(image, c.error);
+    const bool enabled = (c.status_value & 0x006F) == 0x0027 && get<std::int8_t>(image, c.mode_display) == kCsp;
+    if (enabled && c.enabled_at < 0) {
+      c.enabled_at = c.now;
+      c.start = c.position;
+      r.enabled = true;
+    }
+    if (r.enabled && (c.status_value & 0x0008)) r.faulted = true;
+    if (c.enabled_at >= 0 && c.now - c.enabled_at > options_.settle && !c.finished) {
+      const std::int64_t fe = std::abs(static_cast<std::int64_t>(get<std::int32_t>(image, c.following)));
+      r.max_following_error = std::max(r.max_following_error, fe);
+      ++r.samples;
+    }
+  }
+}
+
+bool SineProgram::done() const {
+  bool any = false;
+  for (const Channel& c : channels_) {
+    if (!c.mapped) continue;
+    any = true;
+    if (!c.finished) return false;
+  }
+  return any;
+}
+
+}  // namespace vdrive::master

@@ -1,0 +1,75 @@
+#pragma once
+// A CiA 402 program for the master's cyclic task, as a PLC's motion runtime would run it: in
+// Pre-Op it maps the PDOs it needs (RxPDO 1600h: 6040h, 6060h, 607Ah; TxPDO 1A00h: 6041h, 6061h,
+// 6064h, 60F4h, 603Fh — remapping as TwinCAT does, 1C12h/1C13h cleared first) and reads the
+// following-error window 6065h; in the cycles it walks every drive through the power state
+// machine (fault reset, shutdown, switch on, enable operation) in cyclic synchronous position
+// mode with 607Ah tracking 6064h until enabled, waits `settle`, then commands
+// 607Ah = start + amplitude * sin(2 pi f t) and records the drive's following error (60F4h).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/clock.hpp"
+
+namespace vdrive::master {
+
+class Master;
+
+struct SineProgramOptions {
+  Nanos cycle = 1'000'000;
+  double amplitude = 0.0;        // user units; 0 = one motor revolution (608Fh / gear / feed)
+  double frequency_hz = 1.0;
+  Nanos settle = 200'000'000;    // after Operation enabled, before the motion (A6B L9442: >= 100 ms)
+  Nanos motion = 2'000'000'000;  // how long the sine runs
+};
+
+struct DriveResult {
+  std::uint16_t station = 0;
+  bool enabled = false;                 // reached Operation enabled
+  bool faulted = false;                 // saw the fault bit after enabling
+  std::uint16_t statusword = 0;
+  std::uint16_t error_code = 0;         // 603Fh last seen
+  std::uint32_t following_window = 0;   // 6065h
+  std::int64_t max_following_error = 0; // max |60F4h| while the sine ran
+  std::uint64_t samples = 0;            // cycles of sine measured
+  double amplitude = 0.0;
+  std::string note;                     // why the drive could not run the program
+  bool ok() const { return enabled && !faulted && samples > 0 && max_following_error <= following_window; }
+};
+
+class SineProgram {
+public:
+  explicit SineProgram(const SineProgramOptions& options);
+
+  void preop(Master& master);                    // OpRunOptions::preop
+  void outputs(std::span<std::uint8_t> image);   // OpRunOptions::outputs
+  void inputs(std::span<std::uint8_t> image);    // OpRunOptions::inputs
+  bool done() const;                             // OpRunOptions::done: every drive ran its sine
+
+  const std::vector<DriveResult>& results() const { return results_; }
+
+private:
+  struct Channel {
+    std::uint32_t cw = 0, mode = 0, target = 0;            // byte offsets in the image
+    std::uint32_t status = 0, mode_display = 0, actual = 0, following = 0, error = 0;
+    bool mapped = false;
+    std::uint16_t last_cw = 0;
+    std::int32_t start = 0;
+    std::int32_t position = 0;
+    std::uint16_t status_value = 0;
+    Nanos enabled_at = -1;
+    Nanos now = 0;
+    bool finished = false;
+  };
+  void locate(std::span<std::uint8_t> image);
+
+  SineProgramOptions options_;
+  Master* master_ = nullptr;
+  bool located_ = false;
+  std::vector<Channel> channels_;
+  std::vector<DriveResult> results_;
+};
+
+}  // namespace vdrive::master
