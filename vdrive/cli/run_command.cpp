@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +17,8 @@
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/link/tap_link.hpp"
+#include "plant/plant.hpp"
+#include "plant/plant_yaml.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
@@ -34,7 +37,44 @@ struct RunOptions {
   std::string profile_dir;
   bool no_qdisc_bypass = false;
   int rt_priority = 0;  // 0: normal scheduling
+  std::vector<std::string> plants;  // "N:FILE": slave N (cable order, from 0) moves the plant in FILE
 };
+
+// --plant N:FILE -> per-slave plant descriptions. Errors name the option, the value and, for a bad
+// file, the file, line and field (plant_yaml.hpp).
+std::vector<std::optional<plant::PlantDescription>> load_plants(const RunOptions& o) {
+  std::vector<std::optional<plant::PlantDescription>> plants(o.drives.size());
+  for (const std::string& arg : o.plants) {
+    const std::size_t colon = arg.find(':');
+    std::size_t slave = 0;
+    const bool numeric = colon != std::string::npos && colon > 0 &&
+                         std::all_of(arg.begin(), arg.begin() + static_cast<long>(colon), [](char c) { return c >= '0' && c <= '9'; });
+    if (!numeric) throw CliError(kExitBadArguments, fmt::format("--plant '{}': expected N:FILE (N = slave position from 0)", arg));
+    slave = std::stoul(arg.substr(0, colon));
+    if (slave >= o.drives.size())
+      throw CliError(kExitBadArguments, fmt::format("--plant '{}': there are {} drives (positions 0-{})", arg, o.drives.size(),
+                                                    o.drives.empty() ? 0 : o.drives.size() - 1));
+    if (plants[slave]) throw CliError(kExitBadArguments, fmt::format("--plant '{}': slave {} already has a plant", arg, slave));
+    std::deque<profile::ProductProfile> products;  // stable addresses for the lookup's pointers
+    try {
+      plant::PlantDescription d = plant::load_plant_file(arg.substr(colon + 1), [&](std::string_view id) -> const profile::ProductProfile* {
+        try {
+          products.push_back(profile::load_profile(id, o.profile_dir));
+          return &products.back();
+        } catch (const profile::ProfileError&) {
+          return nullptr;
+        }
+      });
+      if (d.axes.empty()) throw CliError(kExitBadArguments, fmt::format("--plant '{}': the plant has no axis for the drive", arg));
+      plants[slave] = std::move(d);
+    } catch (const plant::PlantYamlError& e) {
+      throw CliError(kExitBadArguments, fmt::format("--plant: {}", e.what()));
+    } catch (const plant::PlantError& e) {
+      throw CliError(kExitBadArguments, fmt::format("--plant: {}", e.what()));
+    }
+  }
+  return plants;
+}
 
 void check_products(const RunOptions& o) {
   const std::vector<std::string> known = profile::known_products();
@@ -81,8 +121,9 @@ void run(const RunOptions& o) {
   MonotonicClock clock;
   std::unique_ptr<network::Network> network;
   try {
-    network = std::make_unique<network::Network>(
-        o.drives, clock, network::NetworkOptions{o.hop_delay, o.profile_dir});
+    network::NetworkOptions options{o.hop_delay, o.profile_dir};
+    options.plants = load_plants(o);
+    network = std::make_unique<network::Network>(o.drives, clock, options);
   } catch (const profile::ProfileError& e) {
     // With --profile-dir an unknown id is the user's mistake; otherwise the build is broken.
     throw CliError(o.profile_dir.empty() ? kExitFailure : kExitBadArguments, e.what());
@@ -123,6 +164,9 @@ void add_run_command(CLI::App& app) {
   iface->excludes(tap);
   cmd->add_option("--drive,-d", o->drives, "Product id of the next drive in cable order (repeat)")
       ->required()
+      ->take_all();
+  cmd->add_option("--plant", o->plants,
+                  "N:FILE: slave N (cable order, from 0) moves the plant in FILE (docs/plant.md); repeat per slave")
       ->take_all();
   cmd->add_option("--hop-delay", o->hop_delay, "Delay per slave and direction in ns (default 500)")
       ->check(CLI::Range(Nanos{0}, Nanos{1'000'000'000}));

@@ -55,7 +55,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   std::vector<std::unique_ptr<FirmwareModule>> modules;  // filled by install_modules()
 
   // The firmware's parts, in service order. Each issue's module is added here.
-  void install_modules() {
+  void install_modules(const FirmwareOptions& /*options*/) {
     modules.push_back(std::make_unique<mailbox::MailboxModule>(context));
     auto process_data = std::make_unique<pdo::ProcessDataModule>(context);
     auto synchronisation = std::make_unique<sync::SyncModule>(context);
@@ -187,9 +187,9 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   Nanos now_ = 0;  // time of the event being serviced, for entered()
 };
 
-SlaveFirmware::SlaveFirmware(const profile::ProductProfile& profile, esc::Esc& esc)
+SlaveFirmware::SlaveFirmware(const profile::ProductProfile& profile, esc::Esc& esc, const FirmwareOptions& options)
     : impl_(std::make_unique<Impl>(profile, esc)) {
-  impl_->install_modules();
+  impl_->install_modules(options);
 }
 
 SlaveFirmware::~SlaveFirmware() = default;
@@ -212,5 +212,7 @@ void SlaveFirmware::tick(Nanos now) {
 Nanos SlaveFirmware::next_deadline() const { return impl_->next_deadline(); }
 
 void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_switch = id; }
+
+drive::DriveEngine* SlaveFirmware::drive() { return nullptr; }
 
 }  // namespace vdrive::firmware

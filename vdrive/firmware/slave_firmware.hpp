@@ -7,16 +7,25 @@
 // PDO, CiA402.
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "common/clock.hpp"
 #include "esc_model/esc.hpp"
+#include "plant/plant_description.hpp"
 #include "vdrive/profile/product_profile.hpp"
+
+namespace vdrive::drive { class DriveEngine; }
 
 namespace vdrive::firmware {
 
+struct FirmwareOptions {
+  // The machine the drive moves (axis 0 is its motor); empty = plant::default_plant(profile).
+  std::optional<plant::PlantDescription> plant;
+};
+
 class SlaveFirmware {
 public:
-  SlaveFirmware(const profile::ProductProfile& profile, esc::Esc& esc);
+  SlaveFirmware(const profile::ProductProfile& profile, esc::Esc& esc, const FirmwareOptions& options = {});
   ~SlaveFirmware();
 
   // Power-on: initialise AL status (Init), load what the firmware loads at boot.
@@ -31,6 +40,10 @@ public:
   // code: A6B rotary switch (low byte) + object 3740h (high byte), L5802-L5924; DS1000A-EC rotary
   // ID switch, L789-L795. Until set, the firmware reports the station alias register 0x0012.
   void set_device_id_switch(std::uint16_t id);
+
+  // The CiA 402 drive (products with drive modes), nullptr for other devices. For observers,
+  // tests and fault injection; single-threaded like the rest of the firmware.
+  drive::DriveEngine* drive();
 
 private:
   struct Impl;

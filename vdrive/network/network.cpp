@@ -20,7 +20,9 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
       const DcModel& dc = options.dc_models[slaves_.size()];
       slave->esc->set_dc_model(dc.drift_ppm, dc.start_offset);
     }
-    slave->firmware = std::make_unique<firmware::SlaveFirmware>(slave->profile, *slave->esc);
+    firmware::FirmwareOptions firmware_options;
+    if (slaves_.size() < options.plants.size()) firmware_options.plant = options.plants[slaves_.size()];
+    slave->firmware = std::make_unique<firmware::SlaveFirmware>(slave->profile, *slave->esc, firmware_options);
     segment_.append(*slave->esc);
     slaves_.push_back(std::move(slave));
   }

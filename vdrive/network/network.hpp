@@ -9,6 +9,7 @@
 // are due. Single-threaded; nothing allocates after construction.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -31,6 +32,8 @@ struct NetworkOptions {
   Nanos hop_delay = 500;     // ns per slave and direction, see Segment
   std::string profile_dir;   // empty: the profiles built into the binary
   std::vector<DcModel> dc_models = {};  // per slave in cable order; slaves beyond it: ideal oscillator
+  // Per slave in cable order: the machine its drive moves; absent/empty = the product's default plant.
+  std::vector<std::optional<plant::PlantDescription>> plants = {};
 };
 
 class Network {
@@ -57,6 +60,7 @@ public:
   std::size_t size() const { return slaves_.size(); }
   const profile::ProductProfile& profile(std::size_t i) const { return slaves_[i]->profile; }
   esc::Esc& esc(std::size_t i) { return *slaves_[i]->esc; }
+  firmware::SlaveFirmware& firmware(std::size_t i) { return *slaves_[i]->firmware; }
   Segment& segment() { return segment_; }
 
 private:
