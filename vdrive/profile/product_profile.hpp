@@ -371,6 +371,15 @@ struct StepperSpec {
   ParameterRef run_current;                           // open-loop current, as a fraction of rated (scale to 0..1)
 };
 
+// Profile position (pp) set-point handling where the products differ (issue 5 item 2).
+struct ProfilePositionSpec {
+  bool buffered_set_point = true;       // one set-point waits behind the executing one (A6B L15728-L15757);
+                                        // false: a set-point given during a move without bit 5 is dropped (DS5C1 L3764)
+  bool change_on_set_point = false;     // 6040h bit 9 honoured (DS1000A-EC L1729-L1738, L2081-L2086)
+  bool sin2_profile = false;            // 6086h = 1 selects a sin^2 ramp (DS1000A-EC L1831-L1834)
+  bool halt_discards_on_immediate = false;  // halt + bit 5 + new set-point drops the target and holds (DS1000A-EC L2111-L2117)
+};
+
 struct DriveSpec {
   std::uint32_t control_period_ns = 125000;           // internal position/velocity loop period
   bool stepper = false;                               // closed-loop stepper (open/closed-loop modes)
@@ -391,6 +400,7 @@ struct DriveSpec {
   bool torque_off_input = false;                      // TO/STO input forces Switch on disabled
   std::uint32_t servo_on_delay_ns = 0;                // Switched on -> Operation enabled takes this long
   double overspeed_factor = 1.2;                      // overspeed alarm above factor * 6080h (when no vendor level)
+  ProfilePositionSpec pp;
   ControlGainSpec gains;
   DriveLevelSpec levels;
   StepperSpec stepper_loop;
