@@ -361,7 +361,9 @@ enum class BrakeRule : std::uint8_t {
 struct DriveLevelSpec {
   ParameterRef following_error;                       // alarm level (A6B 3014h Pr0.14, DS5C1 P0-23, DS1000A 2108h)
   bool following_error_in_increments = false;         // level in encoder increments (else user units)
+  bool following_error_in_revolutions = false;        // level in motor revolutions (DS5C1 P0-23, 0.01 rev)
   ParameterRef overspeed_rpm;                         // overspeed alarm level, r/min (0 / none: overspeed_factor * 6080h)
+  ParameterRef overspeed_reverse_rpm;                 // reverse-direction level where the product has one (DS5C1 P3-22); none: overspeed_rpm
 };
 
 // The DS1000A-EC's closed-loop stepper settings (210Dh-2113h).
