@@ -124,7 +124,7 @@ DS5C1 = [  # xinje-ds5c1-user-manual.zh.md
     (0x2007, 0, "max", 50000),                # L8658 P0-07 第一惯量比 1% 500 0~50000 √
     (0x2007, 0, "units", "1%"),               # L8658
     (0x2009, 0, "default", 0x0F00),           # L8659-L8665 P0-09.0 = 0, .2 = F, .3 = 0
-    (0x2100, 0, "default", None),             # L8708 P1-00 default depends on model (20P1: 400, others: 200)
+    (0x2100, 0, "default", 200),              # L8708 P1-00 depends on model (20P1: 400, others: 200); override: 200
     (0x2100, 0, "attributes.default_text", "20P1: 400 Others: 200"),  # L8708
     (0x2309, 0, "max", 65535),                # L8792 P3-09 加速时间 ms 0 0~65535 ○
     (0x2321, 0, "data_type", "I16"),          # L8812 P3-33 预设转矩 % 0 -1000~1000
