@@ -4,6 +4,8 @@
 //   vdrive-master sdo-read  --iface IF --slave N --index 0x6041 [--sub 0] [--type u16] [--complete]
 //   vdrive-master sdo-write --iface IF --slave N --index 0x6040 [--sub 0] [--type u16] [--complete] VALUE
 //   vdrive-master od-list   --iface IF --slave N [--names]
+//   vdrive-master foe-write --iface IF --slave N [--name NAME] FILE   (master/tool/foe_command.hpp)
+//   vdrive-master foe-read  --iface IF --slave N --name NAME OUTPUT
 //   vdrive-master op        --iface IF [--cycle-us 1000] [--dc] [--cycles N] [--drift-frames N]
 //                           [--rt-priority N] [--reply-timeout-us N]
 //                           [--sine [--amplitude U] [--frequency HZ] [--seconds S]]
@@ -33,6 +35,7 @@
 #include "master/cia402_program.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
+#include "master/tool/foe_command.hpp"
 #include "master/value_text.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 
@@ -287,6 +290,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 2e9));
   op->add_option("--frequency", sine_options.frequency_hz, "Sine frequency in Hz (default 1)")->check(CLI::Range(0.001, 100.0));
   op->add_option("--seconds", sine_seconds, "How long the sine runs (default 2)")->check(CLI::Range(0.01, 3600.0));
+  vdrive::master::tool::FoeCommand foe(app);  // foe-write, foe-read
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -298,6 +302,7 @@ int main(int argc, char** argv) {
     if (*sdo_read) return run_sdo(iface, sdo_args, false);
     if (*sdo_write) return run_sdo(iface, sdo_args, true);
     if (*od_list) return run_od_list(iface, list_slave, names);
+    if (foe.selected()) return foe.run();
     op_options.cycle = cycle_us * 1000;
     op_options.dc = dc;
     op_options.reply_timeout = timeout_us * 1000;

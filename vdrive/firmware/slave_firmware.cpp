@@ -8,7 +8,9 @@
 #include <vector>
 #include <memory>
 
+#include "plant/motor_params.hpp"
 #include "vdrive/firmware/al_state_machine.hpp"
+#include "vdrive/firmware/drive/drive_module.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
 #include "vdrive/firmware/mailbox/mailbox_module.hpp"
 #include "vdrive/firmware/mailbox_sm_check.hpp"
@@ -55,8 +57,10 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   std::vector<std::unique_ptr<FirmwareModule>> modules;  // filled by install_modules()
 
   // The firmware's parts, in service order. Each issue's module is added here.
-  void install_modules(const FirmwareOptions& /*options*/) {
-    modules.push_back(std::make_unique<mailbox::MailboxModule>(context));
+  void install_modules(const FirmwareOptions& options) {
+    auto mailbox_module = std::make_unique<mailbox::MailboxModule>(context);
+    mailbox::MailboxModule* mbx = mailbox_module.get();
+    modules.push_back(std::move(mailbox_module));
     auto process_data = std::make_unique<pdo::ProcessDataModule>(context);
     auto synchronisation = std::make_unique<sync::SyncModule>(context);
     // In DC mode the cycle runs on SYNC0: outputs are taken over and inputs latched there. In SM2
@@ -72,7 +76,18 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     });
     modules.push_back(std::move(process_data));
     modules.push_back(std::move(synchronisation));
+    // The CiA 402 drive, last: its power-on sees the parameters the mailbox module restored.
+    if (profile.modes.supported_drive_modes != 0 && !profile.modes.modes.empty()) {
+      auto drive = std::make_unique<drive_module::DriveModule>(
+          context, options.plant ? *options.plant : plant::default_plant(profile),
+          [mbx](const coe::Emergency& e) { mbx->post_emergency(e); });
+      drive_module::DriveModule* d = drive.get();
+      pd->set_application([d](Nanos now) { d->after_outputs(now); }, [d](Nanos now) { d->before_inputs(now); });
+      drive_ = d;
+      modules.push_back(std::move(drive));
+    }
   }
+  drive_module::DriveModule* drive_ = nullptr;
 
   std::uint32_t serviced_events() const {
     std::uint32_t events = kEsmEvents;
@@ -213,6 +228,6 @@ Nanos SlaveFirmware::next_deadline() const { return impl_->next_deadline(); }
 
 void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_switch = id; }
 
-drive::DriveEngine* SlaveFirmware::drive() { return nullptr; }
+drive::DriveEngine* SlaveFirmware::drive() { return impl_->drive_ ? &impl_->drive_->engine() : nullptr; }
 
 }  // namespace vdrive::firmware

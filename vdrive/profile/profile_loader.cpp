@@ -241,6 +241,7 @@ ProductProfile parse_profile(std::string_view id, const std::string& text, const
   p.modes = read_modes(root.map("modes"));
   p.homing = read_homing(root.map("homing"));
   p.touch_probe = read_touch_probe(root.map("touch_probe"));
+  p.drive = read_drive(root.map("drive"), p.modes);
   check_consistency(p, root);
   root.finish();
   return p;
@@ -261,6 +262,7 @@ void add_tables(ProductProfile& p, std::string_view alarms, std::string_view mot
   if (motors.empty()) throw ProfileError(motors_file + ": missing (every product has a motor catalogue)");
   p.alarms = parse_alarms(p.id, std::string(alarms), alarms_file);
   p.motors = parse_motors(p.id, std::string(motors), motors_file);
+  check_drive_alarms(p, dir + "/profile.yaml");
 }
 
 }  // namespace

@@ -16,6 +16,9 @@ PdoRules read_pdo_rules(YamlMapReader m);
 ModesSpec read_modes(YamlMapReader m);
 HomingSpec read_homing(YamlMapReader m);
 TouchProbeSpec read_touch_probe(YamlMapReader m);
+// `drive` (issue 5): the CiA 402 behaviour (DriveSpec). `modes` is the product's modes section, which
+// forbidden_mode_switches must name.
+DriveSpec read_drive(YamlMapReader m, const ModesSpec& modes);
 
 // Cross-section rules: default PDOs exist in pdo_rules and fit its limits; per-mode cycle limits
 // name supported modes. `root` is profile.yaml's top level, used to point at the offending key.
@@ -25,6 +28,8 @@ void check_consistency(const ProductProfile& p, const YamlMapReader& root);
 // (the file's `product:` must name it).
 std::vector<AlarmSpec> parse_alarms(std::string_view id, const std::string& text, const std::string& file);
 std::vector<MotorSpec> parse_motors(std::string_view id, const std::string& text, const std::string& file);
+// drive.alarms names only alarms of alarms.yaml (checked once both are read); `file` is profile.yaml.
+void check_drive_alarms(const ProductProfile& p, const std::string& file);
 
 // Parses `text` as YAML; a syntax error becomes a ProfileError naming file and line.
 YAML::Node load_yaml(const std::string& text, const std::string& file);

@@ -34,6 +34,10 @@ MailboxModule::MailboxModule(FirmwareContext& context, const MailboxOptions& opt
       zeros_(sent_.size()),
       resend_(sent_.size()) {
   coe_ = std::make_unique<coe::CoeServer>(context, options.state_dir);
+  if (context.profile.foe_details != 0) {
+    foe_ = std::make_unique<foe::FoeServer>(
+        context, foe::FoeOptions{options.state_dir, options.foe_max_file_bytes, options.foe_programming_time});
+  }
 }
 
 MailboxModule::~MailboxModule() = default;
@@ -54,6 +58,11 @@ void MailboxModule::entered(AlState from, AlState to, Nanos now) {
     running_ = false;
     queue_.clear();
     coe_->reset();
+    if (foe_) {
+      foe_->reset();
+      // Boot -> Init restarts the drive: it runs the firmware downloaded in Boot.
+      if (from == AlState::Boot) foe_->restart();
+    }
     last_request_counter_ = 0;
     reply_counter_ = 0;
     sent_length_ = previous_length_ = 0;
@@ -69,6 +78,7 @@ void MailboxModule::power_on(Nanos now) {
   entered(AlState::Init, AlState::Init, now);
   emergency_head_ = emergency_count_ = 0;
   coe_->parameters().power_on();
+  if (foe_) foe_->power_on();
 }
 
 void MailboxModule::post_emergency(const coe::Emergency& emergency) {
@@ -135,14 +145,26 @@ void MailboxModule::dispatch(const Header& header, std::span<const std::uint8_t>
                              Nanos now) {
   const bool coe = header.type == static_cast<std::uint8_t>(Type::CoE) &&
                    (context_.profile.mailbox.protocols & kProtocolCoE) != 0;
-  // In Boot only FoE runs; FoE itself arrives with issue 10, so for now every product answers
-  // FoE (and everything else it does not serve) with "unsupported protocol".
+  // FoE only where the SII's FoE details advertise it: the A6B's protocol word has the FoE bit
+  // but the product has no FoE (L656, L705), so the bit alone does not decide.
+  const bool foe = header.type == static_cast<std::uint8_t>(Type::FoE) && foe_ != nullptr;
+  if (foe) {
+    foe_->set_request_window(sm0_length_);
+    queue_reply(*foe_, Type::FoE, payload, now);
+    return;
+  }
+  // In Boot only FoE runs (ETG.1000.6); everything else is "unsupported protocol".
   if (!coe || boot_) {
     queue_error(ErrorCode::UnsupportedProtocol);
     return;
   }
+  queue_reply(*coe_, Type::CoE, payload, now);
+}
+
+void MailboxModule::queue_reply(Protocol& protocol, Type type, std::span<const std::uint8_t> payload,
+                                Nanos now) {
   const std::span<std::uint8_t> slot = queue_.back_slot();
-  const Outcome outcome = coe_->on_request(
+  const Outcome outcome = protocol.on_request(
       payload, slot.subspan(kHeaderSize, reply_capacity_ - kHeaderSize), now);
   if (outcome.error) {
     queue_error(*outcome.error);
@@ -150,8 +172,8 @@ void MailboxModule::dispatch(const Header& header, std::span<const std::uint8_t>
   }
   if (outcome.length == 0) return;
   reply_counter_ = next_counter(reply_counter_);
-  Header{static_cast<std::uint16_t>(outcome.length), 0, 0, 0,
-         static_cast<std::uint8_t>(Type::CoE), reply_counter_}
+  Header{static_cast<std::uint16_t>(outcome.length), 0, 0, 0, static_cast<std::uint8_t>(type),
+         reply_counter_}
       .encode(slot);
   queue_.commit_back(kHeaderSize + outcome.length);
 }

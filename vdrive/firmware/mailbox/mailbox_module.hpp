@@ -8,7 +8,9 @@
 //  - Header checks, in the order slave stacks apply them: type 0 or length 0 -> error 0x05
 //    (invalid header); length beyond SM0 -> 0x08 (invalid size); a repeated counter (1..7) is a
 //    duplicate and is dropped; a protocol the slave does not serve -> 0x02 (unsupported protocol).
-//    FoE is answered 0x02 until issue 10 adds it; in Boot only FoE is served.
+//    FoE goes to foe::FoeServer on products whose SII FoE details say so (foe_details != 0), every
+//    other product answers it 0x02 (A6B: FoE unsupported L656/L705 although SII word 1Ch has the
+//    bit); in Boot only FoE is served (docs/foe.md).
 //  - Replies wait in a small fixed queue and go to SM1 when it is empty (written up to its last
 //    byte, which hands it to the master); the reply counter cycles 1..7.
 //  - Repeat request (SM1 activate bit1 toggled by the master): the last reply is written again and
@@ -23,6 +25,7 @@
 #include <vector>
 
 #include "vdrive/firmware/coe/emergency.hpp"
+#include "vdrive/firmware/foe/foe_server.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
 #include "vdrive/firmware/mailbox/mailbox_header.hpp"
 #include "vdrive/firmware/mailbox/reply_queue.hpp"
@@ -35,6 +38,10 @@ struct MailboxOptions {
   // Where 1010h "save" keeps this drive's parameters; empty: $VDRIVE_STATE_DIR, else
   // $XDG_STATE_HOME/vdrive, else /var/lib/vdrive.
   std::string state_dir;
+  // FoE firmware download (products with FoE): file size limit, and how long the drive reports
+  // BUSY while it programs an image (0: it acknowledges the last packet at once).
+  std::size_t foe_max_file_bytes = foe::kMaxFirmwareBytes;
+  Nanos foe_programming_time = 0;
 };
 
 class MailboxModule final : public FirmwareModule {
@@ -56,11 +63,14 @@ public:
 
   std::size_t pending_replies() const { return queue_.size(); }
   std::size_t pending_emergencies() const { return emergency_count_; }
+  // The FoE server, nullptr for products without FoE.
+  foe::FoeServer* foe() { return foe_.get(); }
 
 private:
   void service(Nanos now);
   bool receive_request(Nanos now);
   void dispatch(const Header& header, std::span<const std::uint8_t> payload, Nanos now);
+  void queue_reply(Protocol& protocol, Type type, std::span<const std::uint8_t> payload, Nanos now);
   void queue_error(ErrorCode code);
   void queue_fragments();
   bool send_next();
@@ -70,6 +80,7 @@ private:
 
   FirmwareContext& context_;
   std::unique_ptr<coe::CoeServer> coe_;
+  std::unique_ptr<foe::FoeServer> foe_;
   bool running_ = false;
   bool boot_ = false;
   std::uint16_t sm0_start_ = 0, sm0_length_ = 0, sm1_start_ = 0, sm1_length_ = 0;

@@ -1,0 +1,97 @@
+#include "master/tool/foe_command.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <vector>
+
+#include "master/foe.hpp"
+#include "master/master.hpp"
+#include "vdrive/link/raw_socket_link.hpp"
+
+namespace vdrive::master::tool {
+
+namespace {
+void add_common(CLI::App* cmd, std::string& iface, std::size_t& slave, std::uint32_t& password, std::string& state) {
+  cmd->add_option("--iface,-i", iface, "Network interface the line is connected to")->required();
+  cmd->add_option("--slave", slave, "Slave position as scan prints it (0 = first)")->required();
+  cmd->add_option("--password", password, "FoE password (default 0: none)");
+  cmd->add_option("--state", state, "State for the transfer: boot or preop")
+      ->check(CLI::IsMember({"boot", "preop"}, CLI::ignore_case));
+}
+
+// Scans, checks the slave number and takes the slave to `state`.
+void open(Master& master, std::size_t slave, const std::string& state) {
+  if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on the interface");
+  if (slave >= master.slaves().size()) {
+    throw std::invalid_argument(fmt::format("--slave {}: the line has {} slaves (0..{})", slave, master.slaves().size(),
+                                            master.slaves().size() - 1));
+  }
+  const AlState target = state == "boot" ? AlState::Boot : AlState::PreOp;
+  if (!master.request_state(slave, target)) {
+    throw std::runtime_error(fmt::format("slave did not reach {}: {}", to_string(target),
+                                         describe(master.slaves()[slave])));
+  }
+}
+}  // namespace
+
+FoeCommand::FoeCommand(CLI::App& app) {
+  write_ = app.add_subcommand("foe-write", "Write a file to a slave with FoE (firmware download: in Boot)");
+  add_common(write_, iface_, slave_, password_, state_);
+  write_->add_option("--name", name_, "File name sent to the slave (default: FILE's base name)");
+  write_->add_option("FILE", file_, "The file to send")->required()->check(CLI::ExistingFile);
+  read_ = app.add_subcommand("foe-read", "Read a file from a slave with FoE");
+  add_common(read_, iface_, slave_, password_, state_);
+  read_->add_option("--name", name_, "File name on the slave")->required();
+  read_->add_option("OUTPUT", file_, "Where to store the file")->required();
+}
+
+bool FoeCommand::selected() const { return write_->parsed() || read_->parsed(); }
+
+int FoeCommand::run() {
+  try {
+    return write_->parsed() ? run_write() : run_read();
+  } catch (const FoeError& e) {
+    std::fprintf(stderr, "vdrive-master: %s\n", e.what());
+    return 1;
+  }
+}
+
+int FoeCommand::run_write() {
+  std::ifstream in(file_, std::ios::binary);
+  const std::vector<std::uint8_t> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw std::runtime_error("cannot read " + file_);
+  const std::string name = name_.empty() ? std::filesystem::path(file_).filename().string() : name_;
+  vdrive::link::RawSocketLink link(iface_);
+  Master master(link);
+  open(master, slave_, state_.empty() ? "boot" : state_);
+  FoeClient foe(master, slave_);
+  foe.write(name, data, password_);
+  std::printf("%s: %zu bytes written as \"%s\" in %zu packets (%llu sent again, %llu busy)\n",
+              describe(master.slaves()[slave_]).c_str(), data.size(), name.c_str(), data.size() / foe.max_data() + 1,
+              static_cast<unsigned long long>(foe.resent_packets()), static_cast<unsigned long long>(foe.busy_replies()));
+  // Boot -> Init restarts the drive into what it was given.
+  if (!master.request_state(slave_, AlState::Init)) {
+    std::fprintf(stderr, "vdrive-master: slave did not return to Init: %s\n", describe(master.slaves()[slave_]).c_str());
+    return 2;
+  }
+  return 0;
+}
+
+int FoeCommand::run_read() {
+  vdrive::link::RawSocketLink link(iface_);
+  Master master(link);
+  open(master, slave_, state_.empty() ? "preop" : state_);
+  FoeClient foe(master, slave_);
+  const std::vector<std::uint8_t> data = foe.read(name_, password_);
+  std::ofstream out(file_, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
+  if (!out) throw std::runtime_error("cannot write " + file_);
+  std::printf("%zu bytes read from \"%s\" into %s\n", data.size(), name_.c_str(), file_.c_str());
+  return 0;
+}
+
+}  // namespace vdrive::master::tool

@@ -1,0 +1,173 @@
+// Each product, each mode of its 6502h, from power-up: enable through the power state machine,
+// command a motion as a master would, and check what the motor (the plant) did.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "tests/drive/engine_bench.hpp"
+
+namespace vdrive::drive::test {
+namespace {
+
+bool has_mode(const profile::ProductProfile& p, std::int8_t m) {
+  return std::find(p.modes.modes.begin(), p.modes.modes.end(), m) != p.modes.modes.end();
+}
+
+class EngineModes : public ::testing::TestWithParam<std::string> {
+protected:
+  void SetUp() override { bench = std::make_unique<EngineBench>(GetParam()); }
+
+  void require_mode(std::int8_t m) {
+    if (!has_mode(bench->profile(), m)) GTEST_SKIP() << GetParam() << " has no mode " << int(m);
+  }
+
+  // The profile parameters a master sets before a profile move: `rpm` speed, 20 rev/s^2 ramps.
+  void profile_parameters(double rpm) {
+    EngineBench& b = *bench;
+    const double acc = 20.0 * b.per_rev();
+    b.set(0x6081, 0, std::llround(b.user_speed(rpm)));
+    b.set(0x6083, 0, std::llround(acc));
+    b.set(0x6084, 0, std::llround(acc));
+    if (b.has(0x6085)) b.set(0x6085, 0, std::llround(4 * acc));
+    if (b.has(0x607F)) b.set(0x607F, 0, std::llround(b.user_speed(3000)));
+  }
+
+  std::unique_ptr<EngineBench> bench;
+};
+
+TEST_P(EngineModes, PowerUpIsSwitchOnDisabledWithRemoteInOp) {
+  EngineBench& b = *bench;
+  b.run(10 * kMs);
+  EXPECT_EQ(b.engine().state(), PdsState::SwitchOnDisabled);
+  EXPECT_EQ(b.status() & 0x004F, 0x0040) << std::hex << b.status();
+  EXPECT_NE(b.status() & (1u << 9), 0) << "remote: ESM >= PreOp";
+  EXPECT_EQ(b.get(0x603F), 0);
+}
+
+TEST_P(EngineModes, EnableSequenceReachesOperationEnabledAndHolds) {
+  EngineBench& b = *bench;
+  const std::int8_t m = has_mode(b.profile(), mode::csp) ? mode::csp : mode::pp;
+  ASSERT_TRUE(b.enable(m)) << std::hex << b.status();
+  EXPECT_EQ(b.status() & 0x006F, 0x0027) << std::hex << b.status();
+  const double revs = b.motor_revs();
+  b.run(200 * kMs);
+  EXPECT_NEAR(b.motor_revs(), revs, 0.01) << "an enabled axis with no new set-point holds";
+  EXPECT_TRUE(b.emergencies.empty());
+}
+
+TEST_P(EngineModes, ProfilePositionMovesTenRevolutionsIntoTheWindow) {
+  require_mode(mode::pp);
+  EngineBench& b = *bench;
+  profile_parameters(600);
+  ASSERT_TRUE(b.enable(mode::pp)) << std::hex << b.status();
+  const std::int32_t start = b.position();
+  const double start_revs = b.motor_revs();
+  const auto target = static_cast<std::int32_t>(start + std::llround(10 * b.per_rev()));
+  b.set(0x607A, 0, target);
+  b.command(kCwEnable | kCwNewSetPoint, 5 * kMs);
+  EXPECT_NE(b.status() & (1u << 12), 0) << "set-point acknowledged";
+  b.command(kCwEnable, 1 * kMs);
+  ASSERT_TRUE(b.run_until([&] { return (b.status() & (1u << 10)) != 0; }, 5'000 * kMs)) << std::hex << b.status();
+  const std::int64_t window = std::max<std::int64_t>(b.get(0x6067), 1);
+  EXPECT_LE(std::llabs(static_cast<long long>(b.position()) - target), window);
+  EXPECT_NEAR(b.motor_revs() - start_revs, 10.0, 0.01);
+  EXPECT_NEAR(b.motor_rpm(), 0.0, 5.0);
+}
+
+TEST_P(EngineModes, ProfileVelocityHoldsItsSpeed) {
+  require_mode(mode::pv);
+  EngineBench& b = *bench;
+  profile_parameters(600);
+  ASSERT_TRUE(b.enable(mode::pv));
+  b.set(0x60FF, 0, std::llround(b.user_speed(300)));
+  b.run(1000 * kMs);
+  EXPECT_NEAR(b.motor_rpm(), 300.0, 6.0);
+  double lo = 1e9, hi = -1e9;
+  b.run(200 * kMs, [&](Nanos) {
+    lo = std::min(lo, b.motor_rpm());
+    hi = std::max(hi, b.motor_rpm());
+  });
+  EXPECT_NEAR(lo, 300.0, 6.0);
+  EXPECT_NEAR(hi, 300.0, 6.0);
+  EXPECT_NEAR(static_cast<double>(b.velocity()), b.user_speed(300), b.user_speed(6));
+}
+
+TEST_P(EngineModes, ProfileTorqueAcceleratesWithTheCommandedTorque) {
+  require_mode(mode::tq);
+  EngineBench& b = *bench;
+  if (b.has(0x6087)) b.set(0x6087, 0, 100000);  // 10000 %/s: the ramp is done in 1 ms
+  ASSERT_TRUE(b.enable(mode::tq));
+  b.set(0x6071, 0, 100);  // 10.0 % of rated torque
+  b.run(20 * kMs);
+  const double w0 = b.feedback().motor_velocity_rad_s;
+  b.run(50 * kMs);
+  const double w1 = b.feedback().motor_velocity_rad_s;
+  EXPECT_GT(w1, w0 + 0.1) << "positive torque accelerates in the positive direction";
+  EXPECT_NEAR(static_cast<double>(b.get(0x6077)), 100.0, 15.0) << "6077h reports the torque it makes";
+}
+
+TEST_P(EngineModes, CyclicPositionFollowsARampedMove) {
+  require_mode(mode::csp);
+  EngineBench& b = *bench;
+  ASSERT_TRUE(b.enable(mode::csp));
+  const double start = b.position();
+  const double start_revs = b.motor_revs();
+  // 2 revolutions in 1 s with a smooth (cosine) speed profile.
+  const double distance = 2.0 * b.per_rev();
+  const Nanos t0 = b.now();
+  double worst = 0.0;
+  b.run(1200 * kMs, [&](Nanos now) {
+    const double u = std::clamp(static_cast<double>(now - t0) / 1e9, 0.0, 1.0);
+    b.set(0x607A, 0, std::llround(start + distance * (1.0 - std::cos(std::numbers::pi * u)) / 2.0));
+    worst = std::max(worst, std::abs(static_cast<double>(b.get(0x60F4))));
+  });
+  b.run(300 * kMs, [&](Nanos) { b.set(0x607A, 0, std::llround(start + distance)); });
+  EXPECT_NEAR(b.motor_revs() - start_revs, 2.0, 0.01);
+  EXPECT_LT(worst, 0.1 * b.per_rev()) << "following error stays below 0.1 rev";
+  EXPECT_EQ(b.engine().state(), PdsState::OperationEnabled);
+}
+
+TEST_P(EngineModes, CyclicVelocityHoldsSpeed) {
+  require_mode(mode::csv);
+  EngineBench& b = *bench;
+  ASSERT_TRUE(b.enable(mode::csv));
+  const auto target = std::llround(b.user_speed(200));
+  b.run(800 * kMs, [&](Nanos) { b.set(0x60FF, 0, target); });
+  double lo = 1e9, hi = -1e9;
+  b.run(200 * kMs, [&](Nanos) {
+    b.set(0x60FF, 0, target);
+    lo = std::min(lo, b.motor_rpm());
+    hi = std::max(hi, b.motor_rpm());
+  });
+  EXPECT_NEAR(lo, 200.0, 4.0);
+  EXPECT_NEAR(hi, 200.0, 4.0);
+}
+
+TEST_P(EngineModes, CyclicTorqueMakesTheCommandedTorque) {
+  require_mode(mode::cst);
+  EngineBench& b = *bench;
+  ASSERT_TRUE(b.enable(mode::cst));
+  b.run(20 * kMs, [&](Nanos) { b.set(0x6071, 0, -80); });
+  const double w0 = b.feedback().motor_velocity_rad_s;
+  b.run(50 * kMs, [&](Nanos) { b.set(0x6071, 0, -80); });
+  EXPECT_LT(b.feedback().motor_velocity_rad_s, w0 - 0.1) << "negative torque turns the motor backwards";
+  EXPECT_NEAR(static_cast<double>(b.get(0x6077)), -80.0, 15.0);
+}
+
+TEST_P(EngineModes, HomingOnTheCurrentPositionPresetsHomeOffset) {
+  require_mode(mode::hm);
+  EngineBench& b = *bench;
+  b.set(0x6098, 0, 37);
+  b.set(0x607C, 0, 12345);
+  ASSERT_TRUE(b.enable(mode::hm));
+  b.command(kCwEnable | kCwNewSetPoint, 20 * kMs);
+  EXPECT_EQ(b.status() & (1u << 12 | 1u << 13), 1u << 12) << std::hex << b.status();
+  EXPECT_NEAR(b.position(), 12345, 2);
+}
+
+INSTANTIATE_TEST_SUITE_P(Products, EngineModes, ::testing::Values("a6b", "ds5c1", "ds1000a"));
+
+}  // namespace
+}  // namespace vdrive::drive::test

@@ -1,0 +1,360 @@
+#include "vdrive/drive/drive_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "vdrive/drive/control/motor_setpoint.hpp"
+#include "vdrive/drive/modes/cyclic_position_mode.hpp"
+#include "vdrive/drive/modes/cyclic_torque_mode.hpp"
+#include "vdrive/drive/modes/cyclic_velocity_mode.hpp"
+#include "vdrive/drive/modes/homing_mode.hpp"
+#include "vdrive/drive/modes/interpolated_position.hpp"
+#include "vdrive/drive/modes/profile_position.hpp"
+#include "vdrive/drive/modes/profile_torque.hpp"
+#include "vdrive/drive/modes/profile_velocity.hpp"
+
+namespace vdrive::drive {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// A loop that fell this far behind (a debugger, a stopped process) resumes from now instead of
+// replaying every missed step.
+constexpr Nanos kMaxCatchUp = 100'000'000;
+
+std::unique_ptr<ModeHandler> make_handler(std::int8_t m, const DriveContext& ctx) {
+  switch (m) {
+    case mode::pp: return std::make_unique<ProfilePositionMode>(ctx);
+    case mode::pv: return std::make_unique<ProfileVelocityMode>(ctx);
+    case mode::tq: return std::make_unique<ProfileTorqueMode>(ctx);
+    case mode::hm: return std::make_unique<HomingMode>(ctx);
+    case mode::ip: return std::make_unique<InterpolatedPositionMode>(ctx);
+    case mode::csp: return std::make_unique<CyclicPositionMode>(ctx);
+    case mode::csv: return std::make_unique<CyclicVelocityMode>(ctx);
+    case mode::cst: return std::make_unique<CyclicTorqueMode>(ctx);
+    default: return nullptr;  // vl and vendor modes: not run
+  }
+}
+
+std::int32_t saturate_i32(double v) {
+  if (!(v == v)) return 0;
+  return static_cast<std::int32_t>(std::clamp(std::llround(std::clamp(v, -2.2e9, 2.2e9)),
+                                              static_cast<long long>(INT32_MIN), static_cast<long long>(INT32_MAX)));
+}
+
+std::int16_t saturate_i16(double v) {
+  if (!(v == v)) return 0;
+  return static_cast<std::int16_t>(std::clamp(std::lround(std::clamp(v, -40000.0, 40000.0)), -32768L, 32767L));
+}
+
+}  // namespace
+
+DriveEngine::DriveEngine(const profile::ProductProfile& profile, od::ObjectStore& objects, plant::Plant& plant,
+                         std::size_t axis, const plant::AxisSpec& axis_spec,
+                         AlarmManager::EmergencySink emergencies)
+    : profile_(profile),
+      objects_(objects),
+      plant_(plant),
+      axis_(axis),
+      ctx_{profile, objects, units_},
+      obj_(objects),
+      pds_(ctx_),
+      stop_(ctx_),
+      selector_(ctx_),
+      limits_(ctx_),
+      alarms_(ctx_, std::move(emergencies)),
+      monitors_(ctx_, alarms_),
+      io_(ctx_),
+      probe_(ctx_),
+      axis_spec_(axis_spec) {
+  loop_ = make_control_loop(ctx_, axis_spec_.motor);
+  for (std::int8_t m : profile.modes.modes) {
+    if (m <= 0 || m >= static_cast<std::int8_t>(handlers_.size())) continue;
+    handlers_[static_cast<std::size_t>(m)] = make_handler(m, ctx_);
+  }
+  homing_ = static_cast<HomingMode*>(handlers_[mode::hm].get());
+  period_ = std::max<Nanos>(static_cast<Nanos>(profile.drive.control_period_ns), 1000);
+}
+
+DriveEngine::~DriveEngine() = default;
+
+ModeHandler* DriveEngine::handler_for(std::int8_t m) const {
+  if (m <= 0 || m >= static_cast<std::int8_t>(handlers_.size())) return nullptr;
+  return handlers_[static_cast<std::size_t>(m)].get();
+}
+
+void DriveEngine::latch_units() {
+  FactorGroup f;
+  auto at_least_one = [](std::uint32_t v) { return v == 0 ? 1u : v; };
+  // 608Fh-01h = 0 (DS1000A-EC factory value) or absent: the motor's own encoder resolution.
+  const std::uint32_t increments = obj_.encoder_increments.get();
+  f.encoder_increments = increments != 0 ? increments : std::max<std::uint32_t>(axis_spec_.encoder.counts_per_rev, 1);
+  f.encoder_revolutions = at_least_one(obj_.encoder_revolutions.get());
+  f.gear_motor_revolutions = at_least_one(obj_.gear_motor.get());
+  f.gear_shaft_revolutions = at_least_one(obj_.gear_shaft.get());
+  f.feed = obj_.feed.present() ? at_least_one(obj_.feed.get()) : f.encoder_increments;
+  f.feed_shaft_revolutions = at_least_one(obj_.feed_shaft.get());
+  f.polarity = obj_.polarity.get();
+  // Keep the user position where it is across the change (the axis did not move).
+  const double angle = plant_.feedback(axis_).motor_angle_rad;
+  const double before = units_.position_to_user(angle - zero_rad_) + offset_user_;
+  units_.apply(f);
+  offset_user_ = before - units_.position_to_user(angle - zero_rad_);
+}
+
+void DriveEngine::power_on(Nanos now) {
+  const plant::AxisFeedback& fb = plant_.feedback(axis_);
+  // Absolute encoders report the position they hold; incremental ones start counting at 0.
+  zero_rad_ = axis_spec_.encoder.absolute ? 0.0 : fb.motor_angle_rad;
+  offset_user_ = 0.0;
+  units_ = UnitScaling{};
+  latch_units();
+  offset_user_ = 0.0;
+  pds_.power_on();
+  selector_.power_on();
+  alarms_.power_on();
+  io_.power_on();
+  probe_.power_on();
+  if (homing_) {
+    homing_->clear_attained();
+    if (axis_spec_.encoder.absolute && profile_.drive.soft_limits == profile::SoftLimitRule::Always)
+      homing_->set_attained();  // absolute encoder: the position is established (A6B L18222)
+  }
+  active_ = handler_for(selector_.active());
+  loop_->reset(fb);
+  last_ = Setpoint{};
+  sample_ = measure(now, fb);
+  demand_position_ = sample_.position;
+  demand_velocity_ = 0.0;
+  last_.position = demand_position_;
+  previous_inputs_ = fb.inputs;
+  powered_ = was_enabled_ = homed_ = false;
+  cycle_pending_ = false;
+  next_step_ = now;
+  epoch_ = now - plant_.time();
+  obj_.statusword.set(pds_.statusword());
+  publish(sample_, fb);
+}
+
+void DriveEngine::esm_changed(firmware::AlState from, firmware::AlState to, Nanos now) {
+  using firmware::AlState;
+  if (to == AlState::Init) probe_.cancel();
+  if (from == AlState::Init && to == AlState::PreOp) {
+    if (homing_) homing_->clear_attained();
+    latch_units();
+  }
+  if (from == AlState::PreOp && to == AlState::SafeOp) latch_units();  // startup SDOs are written by now
+  if (from == AlState::Op && firmware::rank(to) < firmware::rank(from) && pds_.power_stage_on())
+    raise_cause(profile_.drive.alarms.esm_change_while_enabled, now);
+}
+
+void DriveEngine::outputs_taken(Nanos now) {
+  for (auto& h : handlers_)
+    if (h) h->on_cycle(now);
+}
+
+bool DriveEngine::raise_alarm(std::string_view code, Nanos now) {
+  const profile::AlarmSpec* a = alarms_.find(code);
+  if (!a) return false;
+  alarms_.raise(*a, now);
+  return true;
+}
+
+void DriveEngine::raise_cause(const std::string& code, Nanos t) {
+  if (code.empty()) return;
+  if (const profile::AlarmSpec* a = alarms_.find(code)) alarms_.raise(*a, t);
+}
+
+void DriveEngine::advance_to(Nanos now, const BusState& bus) {
+  if (now - next_step_ > kMaxCatchUp) next_step_ = now - kMaxCatchUp;
+  while (next_step_ <= now) {
+    step(next_step_, bus);
+    next_step_ += period_;
+  }
+}
+
+AxisSample DriveEngine::measure(Nanos t, const plant::AxisFeedback& fb) const {
+  AxisSample s;
+  s.time = t;
+  s.dt_s = static_cast<double>(period_) * 1e-9;
+  s.position = units_.position_to_user(fb.motor_angle_rad - zero_rad_) + offset_user_;
+  s.velocity = units_.velocity_to_user(fb.motor_velocity_rad_s);
+  const double rated = axis_spec_.motor.rated_torque_nm > 0 ? axis_spec_.motor.rated_torque_nm : 1.0;
+  s.torque = units_.torque_sign() * fb.torque_nm / rated * 1000.0;
+  s.position_demand = demand_position_;
+  s.velocity_demand = demand_velocity_;
+  s.torque_demand = last_.torque;
+  s.inputs = 0;
+  s.index_passed = fb.encoder.index_passed;
+  if (s.index_passed) {
+    const double cpr = axis_spec_.encoder.counts_per_rev > 0 ? axis_spec_.encoder.counts_per_rev : 1.0;
+    const double back_rad = static_cast<double>(fb.encoder.counts - fb.encoder.index_counts) * kTwoPi / cpr;
+    s.index_position = units_.position_to_user(fb.motor_angle_rad - back_rad - zero_rad_) + offset_user_;
+  }
+  s.stopped = stop_.stopped(s.velocity);
+  s.referenced = homed_ || (homing_ && homing_->attained());
+  return s;
+}
+
+void DriveEngine::rereference(double found_position) {
+  // The point found reads 607Ch from now on (A6B L18429-L18433): new = old - found + 607Ch.
+  const double shift = static_cast<double>(obj_.home_offset.get()) - found_position;
+  offset_user_ += shift;
+  demand_position_ += shift;
+  last_.position += shift;
+  sample_.position += shift;
+  sample_.position_demand += shift;
+  homed_ = true;
+}
+
+void DriveEngine::command(const Setpoint& sp, const plant::AxisFeedback& fb, double dt) {
+  plant::AxisCommand cmd;
+  const bool on = pds_.power_stage_on();
+  if (on) {
+    if (!powered_) loop_->reset(fb);
+    const Setpoint limited = limits_.apply(sp, sample_, homing_ && homing_->running(), homed_);
+    const double zero = zero_rad_ - units_.position_to_motor(offset_user_);
+    const MotorSetpoint m =
+        to_motor_setpoint(limited, units_, axis_spec_.motor.rated_torque_nm, zero, limits_.torque_limit());
+    cmd = loop_->step(m, fb, dt);
+    const double limit_nm = m.torque_limit_nm > 0 ? m.torque_limit_nm : axis_spec_.motor.peak_torque_nm;
+    limits_.note_torque_saturated(!cmd.stepper_open_loop && limit_nm > 0 &&
+                                  std::abs(cmd.torque_nm) >= limit_nm * 0.999);
+    last_ = limited;
+  } else {
+    cmd.torque_nm = 0.0;
+    last_ = Setpoint{Setpoint::Kind::Position, sample_.position, 0.0, 0.0, 0.0};
+  }
+  cmd.brake_released = !io_.brake_engaged(on);
+  powered_ = on;
+  plant_.command(axis_, cmd);
+
+  // The demand as the next step sees it (6062h / 606Bh).
+  switch (last_.kind) {
+    case Setpoint::Kind::Position:
+      demand_velocity_ = (last_.position - demand_position_) / dt;
+      demand_position_ = last_.position;
+      break;
+    case Setpoint::Kind::Velocity:
+      demand_velocity_ = last_.velocity;
+      demand_position_ += last_.velocity * dt;
+      break;
+    case Setpoint::Kind::Torque:
+      demand_velocity_ = sample_.velocity;
+      demand_position_ = sample_.position;
+      break;
+  }
+}
+
+void DriveEngine::step(Nanos t, const BusState& bus) {
+  const plant::AxisFeedback& fb = plant_.feedback(axis_);
+  sample_ = measure(t, fb);
+  const bool torque_off = profile_.drive.torque_off_input && torque_off_input_;
+  sample_.inputs = io_.update(fb.inputs, torque_off, fb.encoder.index_passed);
+
+  // Mode of operation: a change in Operation enabled hands over from where the demand is.
+  const bool enabled_before = pds_.state() == PdsState::OperationEnabled;
+  selector_.step(t, enabled_before);
+  if (selector_.changed()) {
+    active_ = handler_for(selector_.active());
+    if (active_ && was_enabled_) active_->activate(sample_);
+  }
+
+  // Supervision: the vendor alarms whose causes the simulation can produce.
+  const double rpm = sample_.velocity == 0.0 ? 0.0 : units_.user_to_rpm(sample_.velocity);
+  MonitorInputs mi;
+  mi.following_error_user = sample_.position_demand - sample_.position;
+  mi.following_error_increments = mi.following_error_user * units_.increments_per_user();
+  mi.motor_speed_rpm = rpm;
+  mi.max_motor_speed_rpm = static_cast<double>(obj_.max_motor_speed.get());
+  mi.plant_faults = fb.faults;
+  mi.enabled = pds_.power_stage_on() && pds_.state() == PdsState::OperationEnabled;
+  mi.now = t;
+  monitors_.step(mi);
+  if (active_) raise_cause(std::string(active_->pending_alarm()), t);
+  if (const std::string_view a = probe_.pending_alarm(); !a.empty()) raise_cause(std::string(a), t);
+  if (profile_.drive.limit_switches == profile::LimitSwitchRule::Alarm && limits_.limit_switch_active())
+    raise_cause(profile_.drive.alarms.limit_switch, t);
+
+  // Power drive system.
+  const std::uint16_t controlword = obj_.controlword.get();
+  PdsConditions c;
+  c.main_power = main_power_;
+  c.torque_off = torque_off;
+  c.fault = alarms_.active();
+  if (const profile::AlarmSpec* newest = alarms_.newest()) {
+    c.fault_reaction = newest->reaction;
+    c.fault_is_communication = alarms_.is_communication(*newest);
+  }
+  const bool reacting = pds_.state() == PdsState::FaultReactionActive;
+  c.fault_reset_allowed = alarms_.reset_allowed(bus.al_error_pending, reacting, t);
+  c.stopped = sample_.stopped;
+  c.esm_init = bus.esm_init;
+  c.mode = selector_.active();
+  pds_.step(controlword, c);
+  if (pds_.fault_reset_event()) alarms_.reset(bus.al_error_pending, t);
+  if (pds_.abort_connection_fault()) raise_cause(profile_.drive.alarms.esm_change_while_enabled, t);
+  if (pds_.state() == PdsState::OperationEnabled && pds_.enabled_event()) {
+    // Enabling without a mode that runs is the product's alarm (A6B Err88.1 L10625, DS5C1 E-881).
+    if (!active_ || selector_.invalid_request()) raise_cause(profile_.drive.alarms.no_mode_at_enable, t);
+  }
+  if (pds_.stop_started()) stop_.start(pds_.stop(), selector_.active(), sample_, pds_.drive_side_action());
+
+  // Set-point: the mode while motion is allowed, else the running stop, else hold.
+  const bool motion = pds_.motion_allowed() && active_ != nullptr;
+  Setpoint sp{Setpoint::Kind::Position, sample_.position_demand, 0.0, 0.0, 0.0};
+  if (motion) {
+    if (!was_enabled_) {
+      // Transitions 4/16 clear earlier set-points: start from where the axis is (A6B L9715).
+      demand_position_ = sample_.position_demand = sample_.position;
+      demand_velocity_ = sample_.velocity_demand = 0.0;
+      active_->activate(sample_);
+    }
+    sp = active_->step(sample_, controlword);
+    double found = 0.0;
+    if (active_->take_home_found(found)) {
+      rereference(found);
+      sp.position += static_cast<double>(obj_.home_offset.get()) - found;
+    }
+  } else {
+    if (active_) active_->idle(sample_, controlword);
+    if (pds_.stop() != StopKind::None) sp = stop_.step(sample_);
+    else if (!pds_.power_stage_on()) sp.position = sample_.position;
+  }
+  was_enabled_ = motion;
+
+  command(sp, fb, sample_.dt_s);
+
+  // Touch probe on the inputs of this step.
+  probe_.step(previous_inputs_ | (torque_off ? din::torque_off : 0u),
+              fb.inputs | (torque_off ? din::torque_off : 0u), sample_, bus.system_time_ns);
+  previous_inputs_ = fb.inputs;
+
+  std::uint16_t mode_bits = 0;
+  if (active_ && (pds_.state() == PdsState::OperationEnabled || pds_.state() == PdsState::QuickStopActive))
+    mode_bits = active_->status_bits() & sw::mode_bits;
+  std::uint16_t status = pds_.statusword() | mode_bits;
+  if (alarms_.warning()) status |= sw::warning;
+  if (bus.remote) status |= sw::remote;
+  if (limits_.internal_limit()) status |= sw::internal_limit;
+  obj_.statusword.set(status);
+  publish(sample_, fb);
+
+  plant_.advance_to(t + period_ - epoch_);
+}
+
+void DriveEngine::publish(const AxisSample& s, const plant::AxisFeedback& fb) {
+  obj_.position_actual.set(saturate_i32(s.position));
+  obj_.position_internal.set(saturate_i32(s.position * units_.increments_per_user()));
+  obj_.velocity_actual.set(saturate_i32(s.velocity));
+  obj_.torque_actual.set(saturate_i16(s.torque));
+  const double rated_a = axis_spec_.motor.rated_current_a > 0 ? axis_spec_.motor.rated_current_a : 1.0;
+  obj_.current_actual.set(saturate_i16(std::abs(fb.current_a) / rated_a * 1000.0));
+  obj_.position_demand.set(saturate_i32(demand_position_));
+  obj_.position_demand_internal.set(saturate_i32(demand_position_));
+  obj_.velocity_demand.set(saturate_i32(demand_velocity_));
+  obj_.torque_demand.set(saturate_i16(last_.kind == Setpoint::Kind::Torque ? last_.torque : s.torque));
+  obj_.following_error.set(saturate_i32(demand_position_ - s.position));
+}
+
+}  // namespace vdrive::drive

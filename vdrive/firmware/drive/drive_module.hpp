@@ -1,0 +1,43 @@
+#pragma once
+// The CiA 402 drive as a firmware module: owns the plant the drive moves (FirmwareOptions::plant,
+// else plant::default_plant(profile); axis 0 is this drive's motor) and the DriveEngine, and runs
+// the engine's control steps on the firmware's clock: at their own period through tick(), and up to
+// the instant of each process-data exchange (outputs taken over, inputs about to be gathered), so
+// the TxPDO carries the drive's state at that moment. Emergencies go out through the mailbox.
+// Installed for products that list drive modes (6502h != 0).
+#include <memory>
+
+#include "plant/plant.hpp"
+#include "vdrive/drive/drive_engine.hpp"
+#include "vdrive/firmware/coe/emergency.hpp"
+#include "vdrive/firmware/firmware_module.hpp"
+
+namespace vdrive::firmware::drive_module {
+
+class DriveModule final : public FirmwareModule {
+public:
+  // `emergency` posts one emergency message (the mailbox module's queue).
+  DriveModule(FirmwareContext& context, const plant::PlantDescription& plant,
+              std::function<void(const coe::Emergency&)> emergency);
+  ~DriveModule() override;
+
+  void power_on(Nanos now) override;
+  void entered(AlState from, AlState to, Nanos now) override;
+  void tick(Nanos now) override;
+  Nanos next_deadline() const override;
+
+  // Process-data hooks (ProcessDataModule::set_application).
+  void after_outputs(Nanos now);
+  void before_inputs(Nanos now);
+
+  vdrive::drive::DriveEngine& engine() { return *engine_; }
+
+private:
+  vdrive::drive::BusState bus() const;
+
+  FirmwareContext& context_;
+  plant::Plant plant_;
+  std::unique_ptr<vdrive::drive::DriveEngine> engine_;
+};
+
+}  // namespace vdrive::firmware::drive_module
