@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <numbers>
@@ -76,6 +77,16 @@ public:
   std::uint16_t status() const { return static_cast<std::uint16_t>(get(0x6041)); }
   std::int32_t position() const { return static_cast<std::int32_t>(get(0x6064)); }
   std::int32_t velocity() const { return static_cast<std::int32_t>(get(0x606C)); }
+
+  // For failure messages: statusword, 603Fh and the newest alarm.
+  std::string diag() {
+    const profile::AlarmSpec* a = engine_->alarms().newest();
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "6041h=%04X 603Fh=%04X alarm=%s state=%d mode=%d", status(),
+                  static_cast<unsigned>(get(0x603F)), a ? a->code.c_str() : "-", static_cast<int>(engine_->state()),
+                  engine_->mode());
+    return buf;
+  }
 
   // User units per motor revolution in force.
   double per_rev() const { return 2.0 * std::numbers::pi / engine_->units().motor_rad_per_user(); }

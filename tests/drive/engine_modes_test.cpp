@@ -41,7 +41,7 @@ TEST_P(EngineModes, PowerUpIsSwitchOnDisabledWithRemoteInOp) {
   EngineBench& b = *bench;
   b.run(10 * kMs);
   EXPECT_EQ(b.engine().state(), PdsState::SwitchOnDisabled);
-  EXPECT_EQ(b.status() & 0x004F, 0x0040) << std::hex << b.status();
+  EXPECT_EQ(b.status() & 0x004F, 0x0040) << b.diag();
   EXPECT_NE(b.status() & (1u << 9), 0) << "remote: ESM >= PreOp";
   EXPECT_EQ(b.get(0x603F), 0);
 }
@@ -49,8 +49,8 @@ TEST_P(EngineModes, PowerUpIsSwitchOnDisabledWithRemoteInOp) {
 TEST_P(EngineModes, EnableSequenceReachesOperationEnabledAndHolds) {
   EngineBench& b = *bench;
   const std::int8_t m = has_mode(b.profile(), mode::csp) ? mode::csp : mode::pp;
-  ASSERT_TRUE(b.enable(m)) << std::hex << b.status();
-  EXPECT_EQ(b.status() & 0x006F, 0x0027) << std::hex << b.status();
+  ASSERT_TRUE(b.enable(m)) << b.diag();
+  EXPECT_EQ(b.status() & 0x006F, 0x0027) << b.diag();
   const double revs = b.motor_revs();
   b.run(200 * kMs);
   EXPECT_NEAR(b.motor_revs(), revs, 0.01) << "an enabled axis with no new set-point holds";
@@ -61,7 +61,10 @@ TEST_P(EngineModes, ProfilePositionMovesTenRevolutionsIntoTheWindow) {
   require_mode(mode::pp);
   EngineBench& b = *bench;
   profile_parameters(600);
-  ASSERT_TRUE(b.enable(mode::pp)) << std::hex << b.status();
+  // The position window a master sets for its machine: 0.001 rev. The factory value (A6B: 10
+  // increments of a 23-bit encoder) is finer than the stick-slip of the plant's static friction.
+  b.set(0x6067, 0, std::llround(b.per_rev() / 1000.0));
+  ASSERT_TRUE(b.enable(mode::pp)) << b.diag();
   const std::int32_t start = b.position();
   const double start_revs = b.motor_revs();
   const auto target = static_cast<std::int32_t>(start + std::llround(10 * b.per_rev()));
@@ -69,7 +72,9 @@ TEST_P(EngineModes, ProfilePositionMovesTenRevolutionsIntoTheWindow) {
   b.command(kCwEnable | kCwNewSetPoint, 5 * kMs);
   EXPECT_NE(b.status() & (1u << 12), 0) << "set-point acknowledged";
   b.command(kCwEnable, 1 * kMs);
-  ASSERT_TRUE(b.run_until([&] { return (b.status() & (1u << 10)) != 0; }, 5'000 * kMs)) << std::hex << b.status();
+  ASSERT_TRUE(b.run_until([&] { return (b.status() & (1u << 10)) != 0; }, 5'000 * kMs))
+      << b.diag() << " 6064h-607Ah=" << b.position() - target << " 6067h=" << b.get(0x6067)
+      << " 6062h-607Ah=" << b.get(0x6062) - target;
   const std::int64_t window = std::max<std::int64_t>(b.get(0x6067), 1);
   EXPECT_LE(std::llabs(static_cast<long long>(b.position()) - target), window);
   EXPECT_NEAR(b.motor_revs() - start_revs, 10.0, 0.01);
@@ -80,10 +85,10 @@ TEST_P(EngineModes, ProfileVelocityHoldsItsSpeed) {
   require_mode(mode::pv);
   EngineBench& b = *bench;
   profile_parameters(600);
-  ASSERT_TRUE(b.enable(mode::pv));
+  ASSERT_TRUE(b.enable(mode::pv)) << b.diag();
   b.set(0x60FF, 0, std::llround(b.user_speed(300)));
   b.run(1000 * kMs);
-  EXPECT_NEAR(b.motor_rpm(), 300.0, 6.0);
+  EXPECT_NEAR(b.motor_rpm(), 300.0, 6.0) << b.diag();
   double lo = 1e9, hi = -1e9;
   b.run(200 * kMs, [&](Nanos) {
     lo = std::min(lo, b.motor_rpm());
@@ -98,20 +103,19 @@ TEST_P(EngineModes, ProfileTorqueAcceleratesWithTheCommandedTorque) {
   require_mode(mode::tq);
   EngineBench& b = *bench;
   if (b.has(0x6087)) b.set(0x6087, 0, 100000);  // 10000 %/s: the ramp is done in 1 ms
-  ASSERT_TRUE(b.enable(mode::tq));
+  ASSERT_TRUE(b.enable(mode::tq)) << b.diag();
   b.set(0x6071, 0, 100);  // 10.0 % of rated torque
-  b.run(20 * kMs);
   const double w0 = b.feedback().motor_velocity_rad_s;
-  b.run(50 * kMs);
-  const double w1 = b.feedback().motor_velocity_rad_s;
-  EXPECT_GT(w1, w0 + 0.1) << "positive torque accelerates in the positive direction";
-  EXPECT_NEAR(static_cast<double>(b.get(0x6077)), 100.0, 15.0) << "6077h reports the torque it makes";
+  b.run(5 * kMs);
+  EXPECT_NEAR(static_cast<double>(b.get(0x6077)), 100.0, 15.0) << "6077h reports the torque it makes " << b.diag();
+  b.run(10 * kMs);
+  EXPECT_GT(b.feedback().motor_velocity_rad_s, w0 + 0.1) << "positive torque accelerates in the positive direction " << b.diag();
 }
 
 TEST_P(EngineModes, CyclicPositionFollowsARampedMove) {
   require_mode(mode::csp);
   EngineBench& b = *bench;
-  ASSERT_TRUE(b.enable(mode::csp));
+  ASSERT_TRUE(b.enable(mode::csp)) << b.diag();
   const double start = b.position();
   const double start_revs = b.motor_revs();
   // 2 revolutions in 1 s with a smooth (cosine) speed profile.
@@ -125,14 +129,14 @@ TEST_P(EngineModes, CyclicPositionFollowsARampedMove) {
   });
   b.run(300 * kMs, [&](Nanos) { b.set(0x607A, 0, std::llround(start + distance)); });
   EXPECT_NEAR(b.motor_revs() - start_revs, 2.0, 0.01);
-  EXPECT_LT(worst, 0.1 * b.per_rev()) << "following error stays below 0.1 rev";
-  EXPECT_EQ(b.engine().state(), PdsState::OperationEnabled);
+  EXPECT_LE(worst, static_cast<double>(b.get(0x6065))) << "60F4h stays inside the following error window 6065h";
+  EXPECT_EQ(b.engine().state(), PdsState::OperationEnabled) << b.diag();
 }
 
 TEST_P(EngineModes, CyclicVelocityHoldsSpeed) {
   require_mode(mode::csv);
   EngineBench& b = *bench;
-  ASSERT_TRUE(b.enable(mode::csv));
+  ASSERT_TRUE(b.enable(mode::csv)) << b.diag();
   const auto target = std::llround(b.user_speed(200));
   b.run(800 * kMs, [&](Nanos) { b.set(0x60FF, 0, target); });
   double lo = 1e9, hi = -1e9;
@@ -141,19 +145,19 @@ TEST_P(EngineModes, CyclicVelocityHoldsSpeed) {
     lo = std::min(lo, b.motor_rpm());
     hi = std::max(hi, b.motor_rpm());
   });
-  EXPECT_NEAR(lo, 200.0, 4.0);
+  EXPECT_NEAR(lo, 200.0, 4.0) << b.diag();
   EXPECT_NEAR(hi, 200.0, 4.0);
 }
 
 TEST_P(EngineModes, CyclicTorqueMakesTheCommandedTorque) {
   require_mode(mode::cst);
   EngineBench& b = *bench;
-  ASSERT_TRUE(b.enable(mode::cst));
-  b.run(20 * kMs, [&](Nanos) { b.set(0x6071, 0, -80); });
+  ASSERT_TRUE(b.enable(mode::cst)) << b.diag();
   const double w0 = b.feedback().motor_velocity_rad_s;
-  b.run(50 * kMs, [&](Nanos) { b.set(0x6071, 0, -80); });
-  EXPECT_LT(b.feedback().motor_velocity_rad_s, w0 - 0.1) << "negative torque turns the motor backwards";
-  EXPECT_NEAR(static_cast<double>(b.get(0x6077)), -80.0, 15.0);
+  b.run(5 * kMs, [&](Nanos) { b.set(0x6071, 0, -80); });
+  EXPECT_NEAR(static_cast<double>(b.get(0x6077)), -80.0, 15.0) << b.diag();
+  b.run(10 * kMs, [&](Nanos) { b.set(0x6071, 0, -80); });
+  EXPECT_LT(b.feedback().motor_velocity_rad_s, w0 - 0.1) << "negative torque turns the motor backwards " << b.diag();
 }
 
 TEST_P(EngineModes, HomingOnTheCurrentPositionPresetsHomeOffset) {
@@ -161,9 +165,9 @@ TEST_P(EngineModes, HomingOnTheCurrentPositionPresetsHomeOffset) {
   EngineBench& b = *bench;
   b.set(0x6098, 0, 37);
   b.set(0x607C, 0, 12345);
-  ASSERT_TRUE(b.enable(mode::hm));
+  ASSERT_TRUE(b.enable(mode::hm)) << b.diag();
   b.command(kCwEnable | kCwNewSetPoint, 20 * kMs);
-  EXPECT_EQ(b.status() & (1u << 12 | 1u << 13), 1u << 12) << std::hex << b.status();
+  EXPECT_EQ(b.status() & (1u << 12 | 1u << 13), 1u << 12) << b.diag();
   EXPECT_NEAR(b.position(), 12345, 2);
 }
 

@@ -265,10 +265,13 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   MonitorInputs mi;
   mi.following_error_user = sample_.position_demand - sample_.position;
   mi.following_error_increments = mi.following_error_user * units_.increments_per_user();
+  mi.following_error_revolutions = std::abs(units_.position_to_motor(mi.following_error_user)) / kTwoPi;
   mi.motor_speed_rpm = rpm;
   mi.max_motor_speed_rpm = static_cast<double>(obj_.max_motor_speed.get());
   mi.plant_faults = fb.faults;
-  mi.enabled = pds_.power_stage_on() && pds_.state() == PdsState::OperationEnabled;
+  // Position deviation exists only while the position loop runs (pp, hm, ip, csp).
+  mi.enabled = pds_.state() == PdsState::OperationEnabled && pds_.power_stage_on() &&
+               last_.kind == Setpoint::Kind::Position && was_enabled_;
   mi.now = t;
   monitors_.step(mi);
   if (active_) raise_cause(std::string(active_->pending_alarm()), t);

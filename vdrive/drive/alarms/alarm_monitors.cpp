@@ -25,8 +25,10 @@ double AlarmMonitors::overspeed_level_rpm(double max_motor_speed_rpm) const {
 
 void AlarmMonitors::step(const MonitorInputs& in) {
   const double fe_level = following_error_level_.get();
-  const double fe = ctx_.profile.drive.levels.following_error_in_increments ? in.following_error_increments
-                                                                             : in.following_error_user;
+  const profile::DriveLevelSpec& levels = ctx_.profile.drive.levels;
+  const double fe = levels.following_error_in_increments    ? in.following_error_increments
+                    : levels.following_error_in_revolutions ? in.following_error_revolutions
+                                                            : in.following_error_user;
   watch(following_error_, in.enabled && fe_level > 0.0 && std::abs(fe) > fe_level, in.now);
 
   const double os_level = overspeed_level_rpm(in.max_motor_speed_rpm);

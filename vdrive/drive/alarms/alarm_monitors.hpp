@@ -24,10 +24,11 @@ namespace vdrive::drive {
 struct MonitorInputs {
   double following_error_user = 0.0;        // 60F4h before rounding
   double following_error_increments = 0.0;  // the same in encoder increments
+  double following_error_revolutions = 0.0; // the same in motor revolutions
   double motor_speed_rpm = 0.0;
   double max_motor_speed_rpm = 0.0;         // 6080h in r/min
   std::uint32_t plant_faults = 0;           // plant::fault:: bits
-  bool enabled = false;                     // Operation enabled (the position loop runs)
+  bool enabled = false;                     // Operation enabled in a position mode (the position loop runs)
   Nanos now = 0;
 };
 
