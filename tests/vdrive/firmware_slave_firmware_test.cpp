@@ -402,10 +402,15 @@ TEST(FirmwareOnEscDeviceId, Ds1000aReportsTheRotarySwitch) {
 
 // ---- timing -------------------------------------------------------------------------------
 
-TEST(FirmwareOnEscTiming, NothingTimedYet) {
+// In Init the only timed work is the CiA 402 drive's control step (profile.drive.control_period_ns),
+// which runs whatever the EtherCAT state; ticking it leaves the AL state alone.
+TEST(FirmwareOnEscTiming, OnlyTheDriveControlStepIsTimedInInit) {
   Bench b(load("a6b"));
-  EXPECT_EQ(b.fw.next_deadline(), std::numeric_limits<Nanos>::max());
+  const Nanos period = b.product.drive.control_period_ns;
+  EXPECT_LE(b.fw.next_deadline(), period);
   b.fw.tick(1'000'000);
+  EXPECT_GT(b.fw.next_deadline(), 1'000'000);
+  EXPECT_LE(b.fw.next_deadline(), 1'000'000 + period);
   EXPECT_EQ(b.al_status(), 0x0001);
 }
 

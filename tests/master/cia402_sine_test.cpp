@@ -1,0 +1,58 @@
+// As a new user would: the project master takes the line of three drives to Op with DC at 1 ms,
+// enables each in cyclic synchronous position (CiA 402 program, master/cia402_program.hpp) and
+// commands a sine; each drive's position actual must follow within its following-error window
+// 6065h, with no fault. Virtual time: the drives move their plants for real.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "master/cia402_program.hpp"
+#include "master/master.hpp"
+#include "master/op_run.hpp"
+#include "tests/master/virtual_line.hpp"
+
+namespace vdrive::master {
+namespace {
+
+TEST(Cia402Sine, EachDriveFollowsASineInCspAt1msDc) {
+  test::VirtualLine line({"a6b", "ds5c1", "ds1000a"});
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 3u);
+  master.set_mailbox_timeout(20'000'000);
+
+  SineProgramOptions sine;
+  sine.cycle = 1'000'000;
+  sine.frequency_hz = 1.0;
+  sine.motion = 2'000'000'000;
+  SineProgram program(sine);
+  OpRunOptions options;
+  options.cycle = 1'000'000;
+  options.dc = true;
+  options.drift_frames = 200;
+  options.mailbox_timeout = 20'000'000;
+  options.preop = [&](Master& m) { program.preop(m); };
+  options.outputs = [&](std::span<std::uint8_t> image) { program.outputs(image); };
+  options.inputs = [&](std::span<std::uint8_t> image) { program.inputs(image); };
+  options.done = [&] { return program.done(); };
+  options.cycles = static_cast<std::uint64_t>((sine.settle + sine.motion) / options.cycle) + 5000;
+
+  const OpRunResult result = run_to_op(master, options);
+  ASSERT_TRUE(result.reached_op) << result.error;
+  EXPECT_EQ(result.stats.wrong_wkc, 0u);
+  EXPECT_EQ(result.left_op, 0u);
+  ASSERT_EQ(program.results().size(), 3u);
+  for (const DriveResult& r : program.results()) {
+    std::printf("drive 0x%04X: amplitude %.0f, max |60F4h| %lld, 6065h %u, %llu samples, 6041h %04X, 603Fh %04X %s\n",
+                r.station, r.amplitude, static_cast<long long>(r.max_following_error), r.following_window,
+                static_cast<unsigned long long>(r.samples), r.statusword, r.error_code, r.note.c_str());
+    EXPECT_TRUE(r.enabled) << r.station;
+    EXPECT_FALSE(r.faulted) << r.station << " 603Fh " << std::hex << r.error_code;
+    EXPECT_GE(r.samples, 1900u) << r.station;
+    EXPECT_GT(r.amplitude, 0.0) << r.station;
+    EXPECT_LE(r.max_following_error, r.following_window) << r.station;
+    EXPECT_GT(r.max_following_error, 0) << r.station << ": a moving axis lags a little";
+  }
+}
+
+}  // namespace
+}  // namespace vdrive::master
