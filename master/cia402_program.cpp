@@ -1,3 +1,4 @@
+#include <cstdio>
 #include "master/cia402_program.hpp"
 
 #include <algorithm>
@@ -135,8 +136,9 @@ void SineProgram::outputs(std::span<std::uint8_t> image) {
       if (t < 0) {
         target = c.start;
       } else {
-        const double x = results_[i].amplitude * std::sin(2.0 * std::numbers::pi * options_.frequency_hz * 1e-9 *
-                                                          static_cast<double>(t));
+        // 1 - cos: zero speed at the start, no step the axis could not follow.
+        const double x = results_[i].amplitude * (1.0 - std::cos(2.0 * std::numbers::pi * options_.frequency_hz * 1e-9 *
+                                                                 static_cast<double>(t)));
         target = c.start + static_cast<std::int32_t>(std::lround(x));
         if (t > options_.motion) c.finished = true;
       }
@@ -177,6 +179,17 @@ bool SineProgram::done() const {
     if (!c.finished) return false;
   }
   return any;
+}
+
+std::string describe(const DriveResult& r) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "drive 0x%04X: %s, amplitude %.0f, max following error %lld (window 6065h = %u) over %llu cycles, "
+                "statusword 0x%04X, 603Fh 0x%04X%s%s",
+                r.station, r.ok() ? "ok" : "FAILED", r.amplitude, static_cast<long long>(r.max_following_error),
+                r.following_window, static_cast<unsigned long long>(r.samples), r.statusword, r.error_code,
+                r.note.empty() ? "" : ": ", r.note.c_str());
+  return line;
 }
 
 }  // namespace vdrive::master

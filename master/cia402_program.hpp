@@ -5,7 +5,8 @@
 // following-error window 6065h; in the cycles it walks every drive through the power state
 // machine (fault reset, shutdown, switch on, enable operation) in cyclic synchronous position
 // mode with 607Ah tracking 6064h until enabled, waits `settle`, then commands
-// 607Ah = start + amplitude * sin(2 pi f t) and records the drive's following error (60F4h).
+// 607Ah = start + amplitude * (1 - cos(2 pi f t)) — a sine that starts at rest, as a PLC's cam
+// would, instead of a speed step at t = 0 — and records the drive's following error (60F4h).
 #include <cstdint>
 #include <span>
 #include <string>
@@ -38,6 +39,10 @@ struct DriveResult {
   std::string note;                     // why the drive could not run the program
   bool ok() const { return enabled && !faulted && samples > 0 && max_following_error <= following_window; }
 };
+
+// One line for a person: "drive 0x1001: ok, amplitude ..., max following error ... (window 6065h =
+// ...) over N cycles, statusword 0x..., 603Fh 0x...[: note]".
+std::string describe(const DriveResult& r);
 
 class SineProgram {
 public:

@@ -11,7 +11,7 @@
 //                           [--sine [--amplitude U] [--frequency HZ] [--seconds S]]
 //
 // `op --sine` runs a CiA 402 program in Op (master/cia402_program.hpp): every drive is mapped for
-// csp, enabled, and follows 607Ah = start + U sin(2 pi f t); each drive's largest following error
+// csp, enabled, and follows 607Ah = start + U (1 - cos(2 pi f t)); each drive's largest following error
 // (60F4h) is printed against its window 6065h and exit status 2 reports a drive that faulted,
 // never got enabled or left the window.
 //
@@ -217,11 +217,7 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
   if (program) {
     bool all_ok = true;
     for (const auto& r : program->results()) {
-      std::printf("drive 0x%04X: %s, amplitude %.0f, max following error %lld (window 6065h = %u) over %llu cycles, "
-                  "statusword 0x%04X, 603Fh 0x%04X%s%s\n",
-                  r.station, r.ok() ? "ok" : "FAILED", r.amplitude, static_cast<long long>(r.max_following_error),
-                  r.following_window, static_cast<unsigned long long>(r.samples), r.statusword, r.error_code,
-                  r.note.empty() ? "" : ": ", r.note.c_str());
+      std::printf("%s\n", vdrive::master::describe(r).c_str());
       all_ok = all_ok && r.ok();
     }
     if (!all_ok) return 2;

@@ -84,6 +84,7 @@ TEST(AlarmMonitors, FollowingErrorBeyondTheLevelRaisesErr24_0AndBlocksTheClearWh
 
 TEST(AlarmMonitors, FollowingErrorIsNotCheckedWhileDisabledOrWithLevelZero) {
   Bench b("a6b", a6b_levels);
+  ObjectRef<std::int32_t>(b.store, 0x3014).set(0);   // factory 100000 (od-overrides.yaml): set the 0 assumed here
   MonitorInputs in = enabled_at(0);
   in.following_error_user = 1e9;   // 3014h = 0: no level, no check
   b.monitors.step(in);

@@ -69,7 +69,9 @@ TEST(CyclicPositionMode, DemandMovesLinearlyBetweenSetPoints) {
     EXPECT_NEAR(b.last_setpoint().position, expected, 1e-6) << i;
     EXPECT_NEAR(b.last_setpoint().velocity, 400.0 / 1e-3, 1e-6);  // feed-forward: 400 per ms
   }
-  b.run(csp, 3 * kMs, kEnabled);
+  // The master keeps announcing cycles with 607Ah unchanged (without cycles the mode would
+  // extrapolate a lost set-point for two cycles, LostSetPointsAreExtrapolatedForTwoCycles).
+  b.run(csp, 3 * kMs, kEnabled, [](Nanos) {});
   EXPECT_DOUBLE_EQ(b.last_setpoint().position, 400.0);  // value-repeat: holds
 }
 
@@ -147,8 +149,11 @@ TEST(CyclicPositionMode, A6bSaturationBitLimitsTheStepInsteadOfAlarming) {
   b.run(csp, 1 * kMs, kEnabled, [](Nanos) {});
   EXPECT_TRUE(csp.pending_alarm().empty());
   EXPECT_TRUE(csp.clamped());
-  b.run(csp, 1 * kMs, kEnabled);
+  // The demand at the end of that cycle (t = 1 ms, the master repeating 5000): one cycle's worth at
+  // 3000 r/min. Later samples are further on: the demand goes on toward 5000 at 500 per cycle.
+  b.step(csp, kEnabled, [](Nanos) {});
   EXPECT_NEAR(b.last_setpoint().position, 500.0, 1e-6);  // one cycle's worth at 3000 r/min
+  EXPECT_TRUE(csp.pending_alarm().empty());
 }
 
 // DS1000A-EC: beyond 6080h the followed position is limited to what 6080h allows, and catches

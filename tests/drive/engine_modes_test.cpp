@@ -172,6 +172,34 @@ TEST_P(EngineModes, HomingOnTheCurrentPositionPresetsHomeOffset) {
   EXPECT_NEAR(b.position(), 12345, 2);
 }
 
+// Method 19 on the plant's own home switch (on above 3 rad of the load, direct drive): the drive
+// searches in the positive direction, comes back slowly across the edge and presets there.
+TEST(EngineHoming, Method19FindsThePlantsHomeSwitchEdge) {
+  for (const char* id : {"a6b", "ds5c1", "ds1000a"}) {
+    SCOPED_TRACE(id);
+    constexpr double kEdge = 3.0;  // rad
+    EngineBench b(id, [](profile::ProductProfile&, plant::PlantDescription& d) {
+      d.axes[0].switches.home = plant::PositionWindow{kEdge, 1e6};
+    });
+    b.set(0x6098, 0, 19);
+    b.set(0x6099, 1, std::llround(b.user_speed(60)));
+    b.set(0x6099, 2, std::llround(b.user_speed(3)));
+    b.set(0x609A, 0, std::llround(20 * b.per_rev()));
+    b.set(0x607C, 0, 0);
+    ASSERT_TRUE(b.enable(mode::hm)) << b.diag();
+    b.command(kCwEnable | kCwNewSetPoint, 1 * kMs);
+    ASSERT_TRUE(b.run_until([&] { return (b.status() & (1u << 12 | 1u << 13)) != 0; }, 20'000 * kMs,
+                            [&](Nanos) { b.set(0x6040, 0, kCwEnable | kCwNewSetPoint); }))
+        << b.diag();
+    b.run(200 * kMs, [&](Nanos) { b.set(0x6040, 0, kCwEnable | kCwNewSetPoint); });
+    EXPECT_EQ(b.status() & (1u << 10 | 1u << 12 | 1u << 13), 1u << 10 | 1u << 12) << "homing attained " << b.diag();
+    // 6064h now reads 0 at the switch edge: the motor angle there is the position's origin.
+    const double edge_user = static_cast<double>(b.position()) -
+                             (b.feedback().motor_angle_rad - kEdge) / (2.0 * std::numbers::pi) * b.per_rev();
+    EXPECT_NEAR(edge_user, 0.0, 0.002 * b.per_rev());
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Products, EngineModes, ::testing::Values("a6b", "ds5c1", "ds1000a"));
 
 }  // namespace

@@ -80,8 +80,8 @@ TEST(IoTouchProbeA6b, FirstEventLatchesTheFirstRisingEdgeOnlyUntilRestarted) {
   b.function(0x0011);  // 0 -> 1 restarts (L25619-L25621)
   b.step(0);
   EXPECT_EQ(b.status(), 0x0001);
-  b.step(in::probe1);  // step 8 -> 750
-  EXPECT_EQ(b.get(0x60BA), 750);
+  b.step(in::probe1);  // step 7 -> 650
+  EXPECT_EQ(b.get(0x60BA), 650);
   EXPECT_EQ(b.status(), 0x0003);
 }
 

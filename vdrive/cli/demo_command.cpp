@@ -5,12 +5,16 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "master/cia402_program.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "vdrive/cli/cli_error.hpp"
@@ -34,6 +38,7 @@ struct DemoOptions {
   bool keep_running = false;
   std::uint64_t op_cycles = 500;      // 0: stop at Pre-Op
   long long cycle_us = 1000;          // every product supports 1 ms
+  double sine_seconds = 2.0;          // CiA 402 sine in csp after Op (0: process data only)
 };
 
 // The drives' side of the demo: a Network served by the event loop in its own thread, which
@@ -104,6 +109,21 @@ void run_demo(const DemoOptions& opt) {
       op.dc = true;
       op.drift_frames = 2000;
       op.reply_timeout = 100'000'000;  // the demo shares the host: late replies still count, lost ones fail
+      // The drives move: each is enabled in csp and follows a 0.5 Hz sine of one motor revolution
+      // (slow enough that a frame delayed by a busy host stays inside the A6B's 0.012 rev window).
+      std::optional<master::SineProgram> program;
+      if (opt.sine_seconds > 0) {
+        master::SineProgramOptions sine;
+        sine.cycle = op.cycle;
+        sine.motion = static_cast<Nanos>(opt.sine_seconds * 1e9);
+        sine.frequency_hz = 0.5;
+        program.emplace(sine);
+        op.preop = [&](master::Master& mm) { program->preop(mm); };
+        op.outputs = [&](std::span<std::uint8_t> image) { program->outputs(image); };
+        op.inputs = [&](std::span<std::uint8_t> image) { program->inputs(image); };
+        op.done = [&] { return program->done(); };
+        op.cycles = std::max<std::uint64_t>(op.cycles, static_cast<std::uint64_t>((sine.settle + sine.motion) / op.cycle) + 5000);
+      }
       const master::OpRunResult r = master::run_to_op(m, op, [](const std::string& line) { fmt::print("  {}\n", line); });
       for (const std::string& note : r.notes) fmt::print("  note: {}\n", note);
       if (!r.reached_op) throw CliError(kExitFailure, r.error);
@@ -111,6 +131,14 @@ void run_demo(const DemoOptions& opt) {
                  opt.cycle_us, r.stats.cycles, r.layout.expected_wkc, r.stats.wrong_wkc, r.stats.lost_frames,
                  r.stats.max_late / 1000);
       if (!r.ok()) throw CliError(kExitFailure, fmt::format("{} wrong working counters in Op", r.stats.wrong_wkc));
+      if (program) {
+        std::size_t failed = 0;
+        for (const master::DriveResult& d : program->results()) {
+          fmt::print("{}\n", master::describe(d));
+          if (!d.ok()) ++failed;
+        }
+        if (failed > 0) throw CliError(kExitFailure, fmt::format("{} drive(s) did not follow the sine", failed));
+      }
     }
 
     if (opt.keep_running) {
@@ -141,6 +169,10 @@ void add_demo_command(CLI::App& app) {
   cmd->add_option("--cycles", opt->op_cycles, "Cycles to run in Op with DC (0: stop at Pre-Op)")->capture_default_str();
   cmd->add_option("--cycle-us", opt->cycle_us, "Cycle time in microseconds")
       ->check(CLI::Range(125, 100'000))
+      ->capture_default_str();
+  cmd->add_option("--sine-seconds", opt->sine_seconds,
+                  "Seconds of CiA 402 motion in Op: every drive enabled in csp follows a 0.5 Hz sine (0: none)")
+      ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
   cmd->add_flag("--keep-running", opt->keep_running, "Keep the drives and the veth pair until Ctrl-C");
   cmd->callback([opt] { run_demo(*opt); });

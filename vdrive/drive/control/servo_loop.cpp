@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace vdrive::drive {
 
@@ -16,7 +17,11 @@ void ServoLoop::reset(const plant::AxisFeedback& fb) {
   filtered_ = fb.torque_nm;
   torque_ = fb.torque_nm;
   saturated_ = false;
-  last_kind_ = Setpoint::Kind::Position;
+  have_ff_ = false;
+  // The filter state alone would decay to the PI's demand (0 with an empty integrator) within a
+  // few periods: the first position/velocity step presets the integrator to the delivered torque,
+  // as on leaving torque control (the bumpless entry in step()).
+  last_kind_ = Setpoint::Kind::Torque;
 }
 
 plant::AxisCommand ServoLoop::step(const MotorSetpoint& sp, const plant::AxisFeedback& fb, double dt) {
@@ -30,10 +35,23 @@ plant::AxisCommand ServoLoop::step(const MotorSetpoint& sp, const plant::AxisFee
     // Bumpless entry from torque control: the PI starts out delivering the present torque.
     if (last_kind_ == Setpoint::Kind::Torque && integrating && kv > 0.0) integral_ = (torque_ - sp.torque_nm) / kv;
     double w_ref = sp.velocity_rad_s;
-    if (sp.kind == Setpoint::Kind::Position)
+    double acceleration_ff = 0.0;
+    if (sp.kind == Setpoint::Kind::Position) {
       w_ref = gains_.position_gain * (sp.angle_rad - fb.motor_angle_rad) + gains_.velocity_feedforward * sp.velocity_rad_s;
+      // The torque the commanded acceleration needs, fed forward in the same proportion as the
+      // speed: with full feed-forward the position loop only corrects disturbances.
+      // J_tot = Kv / (2 pi f_v) (control_gains.hpp).
+      if (have_ff_ && dt > 0.0 && gains_.velocity_bandwidth_hz > 0.0) {
+        const double inertia = kv / (2.0 * std::numbers::pi * gains_.velocity_bandwidth_hz);
+        acceleration_ff = gains_.velocity_feedforward * inertia * (sp.velocity_rad_s - last_ff_velocity_) / dt;
+      }
+      last_ff_velocity_ = sp.velocity_rad_s;
+      have_ff_ = true;
+    } else {
+      have_ff_ = false;
+    }
     velocity_error = w_ref - fb.motor_velocity_rad_s;
-    demand = kv * (velocity_error + integral_) + sp.torque_nm;
+    demand = kv * (velocity_error + integral_) + sp.torque_nm + acceleration_ff;
   }
   last_kind_ = sp.kind;
 

@@ -1,9 +1,10 @@
 #pragma once
-// The servo cascade: position P (with velocity feed-forward) -> velocity PI -> first-order torque
-// command filter -> torque limit. Velocity and Torque set-points enter further down the chain.
+// The servo cascade: position P (with velocity and acceleration feed-forward, both scaled by the
+// velocity feed-forward gain) -> velocity PI -> first-order torque command filter -> torque limit. Velocity and Torque set-points enter further down the chain.
 // Anti-windup: the integrator holds while the limit clips in the direction it would grow.
 // Changing the set-point kind is bumpless: entering the velocity loop from torque control
-// presets the integrator to the torque being delivered.
+// presets the integrator to the torque being delivered; so does the first step after reset(fb),
+// which starts from the torque the axis delivers (fb.torque_nm, 0 when the stage was off).
 #include "vdrive/drive/control/control_gains.hpp"
 #include "vdrive/drive/control/control_loop.hpp"
 
@@ -29,6 +30,8 @@ private:
   double torque_ = 0.0;     // last output, N m
   bool saturated_ = false;
   Setpoint::Kind last_kind_ = Setpoint::Kind::Position;
+  double last_ff_velocity_ = 0.0;  // previous position set-point's feed-forward speed, rad/s
+  bool have_ff_ = false;
 };
 
 }  // namespace vdrive::drive

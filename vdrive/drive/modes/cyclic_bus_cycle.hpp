@@ -26,15 +26,19 @@ public:
     last_cycle_ = now;
   }
 
-  // True when a new set-point is to be taken in this step; `at` = when it arrived.
-  bool take_new(bool value_changed, Nanos step_start, Nanos& at) {
+  // True when a new set-point is to be taken in the step at `step_time` (AxisSample::time, where
+  // the step begins: its output holds until the next step); `at` = when it arrived. Detected by a
+  // change of value, it is taken as arrived at the step that sees it: dating it a step earlier
+  // would end each one-cycle segment a step before the next set-point is seen, with no demand
+  // rate (csp velocity feed-forward) in that step.
+  bool take_new(bool value_changed, Nanos step_time, Nanos& at) {
     if (driven_) {
       if (!pending_) return false;
       pending_ = false;
       at = last_cycle_;
       return true;
     }
-    at = step_start;
+    at = step_time;
     return value_changed;
   }
 

@@ -84,7 +84,6 @@ Setpoint CyclicPositionMode::step(const AxisSample& s, std::uint16_t controlword
   Setpoint sp;
   sp.kind = Setpoint::Kind::Position;
   const std::int64_t target = bus_target();
-  const Nanos step_start = s.time - static_cast<Nanos>(s.dt_s * 1e9);
 
   if (controlword & cw::halt) {
     if (!halted_) halting_ = {output_, segment_.rate_at(s.time)};
@@ -100,7 +99,7 @@ Setpoint CyclicPositionMode::step(const AxisSample& s, std::uint16_t controlword
   } else {
     halted_ = false;
     Nanos at = 0;
-    if (cycle_.take_new(target != last_target_, step_start, at)) take_set_point(at, target);
+    if (cycle_.take_new(target != last_target_, s.time, at)) take_set_point(at, target);
     output_ = segment_.value_at(s.time);
     sp.position = output_;
     sp.velocity = segment_.rate_at(s.time);

@@ -62,8 +62,7 @@ Setpoint CyclicVelocityMode::step(const AxisSample& s, std::uint16_t controlword
   } else {
     halted_ = false;
     Nanos at = 0;
-    const Nanos step_start = s.time - static_cast<Nanos>(s.dt_s * 1e9);
-    if (cycle_.take_new(target != last_target_, step_start, at)) {
+    if (cycle_.take_new(target != last_target_, s.time, at)) {
       last_target_ = target;
       double goal = static_cast<double>(target);
       limited_ = vmax >= 0.0 && std::abs(goal) > vmax;
