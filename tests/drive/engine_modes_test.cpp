@@ -15,13 +15,14 @@ bool has_mode(const profile::ProductProfile& p, std::int8_t m) {
   return std::find(p.modes.modes.begin(), p.modes.modes.end(), m) != p.modes.modes.end();
 }
 
+// Skips the test (returning from it) when the product does not list mode `m` in 6502h.
+#define REQUIRE_MODE(m) \
+  if (!has_mode(bench->profile(), (m))) GTEST_SKIP() << GetParam() << " has no mode " << int(m)
+
 class EngineModes : public ::testing::TestWithParam<std::string> {
 protected:
   void SetUp() override { bench = std::make_unique<EngineBench>(GetParam()); }
 
-  void require_mode(std::int8_t m) {
-    if (!has_mode(bench->profile(), m)) GTEST_SKIP() << GetParam() << " has no mode " << int(m);
-  }
 
   // The profile parameters a master sets before a profile move: `rpm` speed, 20 rev/s^2 ramps.
   void profile_parameters(double rpm) {
@@ -58,7 +59,7 @@ TEST_P(EngineModes, EnableSequenceReachesOperationEnabledAndHolds) {
 }
 
 TEST_P(EngineModes, ProfilePositionMovesTenRevolutionsIntoTheWindow) {
-  require_mode(mode::pp);
+  REQUIRE_MODE(mode::pp);
   EngineBench& b = *bench;
   profile_parameters(600);
   // The position window a master sets for its machine: 0.001 rev. The factory value (A6B: 10
@@ -83,7 +84,7 @@ TEST_P(EngineModes, ProfilePositionMovesTenRevolutionsIntoTheWindow) {
 }
 
 TEST_P(EngineModes, ProfileVelocityHoldsItsSpeed) {
-  require_mode(mode::pv);
+  REQUIRE_MODE(mode::pv);
   EngineBench& b = *bench;
   profile_parameters(600);
   ASSERT_TRUE(b.enable(mode::pv)) << b.diag();
@@ -101,7 +102,7 @@ TEST_P(EngineModes, ProfileVelocityHoldsItsSpeed) {
 }
 
 TEST_P(EngineModes, ProfileTorqueAcceleratesWithTheCommandedTorque) {
-  require_mode(mode::tq);
+  REQUIRE_MODE(mode::tq);
   EngineBench& b = *bench;
   if (b.has(0x6087)) b.set(0x6087, 0, 100000);  // 10000 %/s: the ramp is done in 1 ms
   ASSERT_TRUE(b.enable(mode::tq)) << b.diag();
@@ -114,7 +115,7 @@ TEST_P(EngineModes, ProfileTorqueAcceleratesWithTheCommandedTorque) {
 }
 
 TEST_P(EngineModes, CyclicPositionFollowsARampedMove) {
-  require_mode(mode::csp);
+  REQUIRE_MODE(mode::csp);
   EngineBench& b = *bench;
   ASSERT_TRUE(b.enable(mode::csp)) << b.diag();
   const double start = b.position();
@@ -135,7 +136,7 @@ TEST_P(EngineModes, CyclicPositionFollowsARampedMove) {
 }
 
 TEST_P(EngineModes, CyclicVelocityHoldsSpeed) {
-  require_mode(mode::csv);
+  REQUIRE_MODE(mode::csv);
   EngineBench& b = *bench;
   ASSERT_TRUE(b.enable(mode::csv)) << b.diag();
   const auto target = std::llround(b.user_speed(200));
@@ -151,7 +152,7 @@ TEST_P(EngineModes, CyclicVelocityHoldsSpeed) {
 }
 
 TEST_P(EngineModes, CyclicTorqueMakesTheCommandedTorque) {
-  require_mode(mode::cst);
+  REQUIRE_MODE(mode::cst);
   EngineBench& b = *bench;
   ASSERT_TRUE(b.enable(mode::cst)) << b.diag();
   const double w0 = b.feedback().motor_velocity_rad_s;
@@ -162,7 +163,7 @@ TEST_P(EngineModes, CyclicTorqueMakesTheCommandedTorque) {
 }
 
 TEST_P(EngineModes, HomingOnTheCurrentPositionPresetsHomeOffset) {
-  require_mode(mode::hm);
+  REQUIRE_MODE(mode::hm);
   EngineBench& b = *bench;
   b.set(0x6098, 0, 37);
   b.set(0x607C, 0, 12345);
@@ -170,6 +171,36 @@ TEST_P(EngineModes, HomingOnTheCurrentPositionPresetsHomeOffset) {
   b.command(kCwEnable | kCwNewSetPoint, 20 * kMs);
   EXPECT_EQ(b.status() & (1u << 12 | 1u << 13), 1u << 12) << b.diag();
   EXPECT_NEAR(b.position(), 12345, 2);
+}
+
+// DS1000A-EC ip: the master streams one 60C1h-01h record per 1 ms (mapped into the RxPDO) with
+// 6040h bit 4 set; the drive interpolates linearly between them (L2262-L2270, L2363).
+TEST_P(EngineModes, InterpolatedPositionFollowsTheRecords) {
+  REQUIRE_MODE(mode::ip);
+  EngineBench& b = *bench;
+  b.set(0x1600, 0, 0);
+  b.set(0x1600, 1, 0x60C10120);
+  b.set(0x1600, 0, 1);
+  b.set(0x1C12, 0, 0);
+  b.set(0x1C12, 1, 0x1600);
+  b.set(0x1C12, 0, 1);
+  b.set(0x60C4, 6, 1);  // open the record buffer (closed at power-on, L2563-L2566)
+  ASSERT_TRUE(b.enable(mode::ip)) << b.diag();
+  const double start = b.position();
+  const double start_revs = b.motor_revs();
+  const double distance = 2.0 * b.per_rev();
+  const Nanos t0 = b.now();
+  b.set(0x6040, 0, kCwEnable | kCwNewSetPoint);
+  bool bit12 = true;
+  b.run(1200 * kMs, [&](Nanos now) {
+    const double u = std::clamp(static_cast<double>(now - t0) / 1e9, 0.0, 1.0);
+    b.set(0x60C1, 1, std::llround(start + distance * (1.0 - std::cos(std::numbers::pi * u)) / 2.0));
+    if (now > t0 + 5 * kMs) bit12 = bit12 && (b.status() & (1u << 12)) != 0;
+  });
+  EXPECT_TRUE(bit12) << "6041h bit 12: interpolation active";
+  b.run(300 * kMs, [&](Nanos) { b.set(0x60C1, 1, std::llround(start + distance)); });
+  EXPECT_NEAR(b.motor_revs() - start_revs, 2.0, 0.01) << b.diag();
+  EXPECT_EQ(b.engine().state(), PdsState::OperationEnabled) << b.diag();
 }
 
 // Method 19 on the plant's own home switch (on above 3 rad of the load, direct drive): the drive
