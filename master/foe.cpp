@@ -74,15 +74,16 @@ MailboxConfig foe_mailbox_config(const Slave& s) {
   return {s.station, s.mailbox_sm[0].start, s.mailbox_sm[0].length, s.mailbox_sm[1].start, s.mailbox_sm[1].length};
 }
 
-FoeClient::FoeClient(Transport& transport, const MailboxConfig& config, FoeOptions options)
-    : transport_(transport), mailbox_(transport, config, options.timeout), options_(std::move(options)) {
+FoeClient::FoeClient(Transport& transport, const MailboxConfig& config, FoeOptions options, std::uint8_t* counter)
+    : transport_(transport), mailbox_(transport, config, options.timeout, counter), options_(std::move(options)) {
   if (mailbox_.max_payload() <= kFoeHeaderSize) {
     throw MailboxError(fmt::format("slave 0x{:04X}: mailbox too small for FoE", config.station));
   }
 }
 
 FoeClient::FoeClient(Master& master, std::size_t slave, FoeOptions options)
-    : FoeClient(master.transport(), current_config(master, slave), std::move(options)) {}
+    : FoeClient(master.transport(), current_config(master, slave), std::move(options),
+                &master.slaves().at(slave).mailbox_counter) {}
 
 void FoeClient::send(std::uint8_t op, std::uint32_t field, std::span<const std::uint8_t> tail) {
   message_.assign({op, 0, static_cast<std::uint8_t>(field), static_cast<std::uint8_t>(field >> 8),

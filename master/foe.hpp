@@ -62,8 +62,11 @@ MailboxConfig foe_mailbox_config(const Slave& slave);
 
 class FoeClient {
 public:
-  FoeClient(Transport& transport, const MailboxConfig& config, FoeOptions options = {});
-  // The slave's mailbox for its current AL state (reads AL status first).
+  // `counter`: the slave's mailbox counter, see MailboxClient.
+  FoeClient(Transport& transport, const MailboxConfig& config, FoeOptions options = {},
+            std::uint8_t* counter = nullptr);
+  // The slave's mailbox for its current AL state (reads AL status first), continuing the counter
+  // of the master's other clients of that slave (Slave::mailbox_counter).
   FoeClient(Master& master, std::size_t slave, FoeOptions options = {});
 
   // Throws FoeError (the slave's ERR), MailboxError (mailbox error reply, timeout).

@@ -33,8 +33,13 @@ std::string_view mailbox_error_text(std::uint16_t code) {
   }
 }
 
-MailboxClient::MailboxClient(Transport& transport, const MailboxConfig& config, Nanos timeout)
-    : transport_(transport), config_(config), timeout_(timeout), out_(config.rx_size), in_(config.tx_size) {
+MailboxClient::MailboxClient(Transport& transport, const MailboxConfig& config, Nanos timeout, std::uint8_t* counter)
+    : transport_(transport),
+      config_(config),
+      timeout_(timeout),
+      counter_(counter != nullptr ? counter : &own_counter_),
+      out_(config.rx_size),
+      in_(config.tx_size) {
   if (config.rx_size <= kMailboxHeaderSize || config.tx_size <= kMailboxHeaderSize) {
     throw MailboxError(fmt::format("slave 0x{:04X} has no usable mailbox", config.station));
   }
@@ -60,14 +65,14 @@ void MailboxClient::send(std::uint8_t type, std::span<const std::uint8_t> payloa
     }
     sleep_poll();
   }
-  counter_ = static_cast<std::uint8_t>(counter_ % 7 + 1);  // 1..7; 0 is reserved for "no counter"
+  *counter_ = static_cast<std::uint8_t>(*counter_ % 7 + 1);  // 1..7; 0 is reserved for "no counter"
   std::fill(out_.begin(), out_.end(), 0);
   const auto length = static_cast<std::uint16_t>(payload.size());
   out_[0] = static_cast<std::uint8_t>(length);
   out_[1] = static_cast<std::uint8_t>(length >> 8);
   out_[2] = out_[3] = 0;   // address: 0 = from the master
   out_[4] = 0;             // channel 0, priority 0
-  out_[5] = static_cast<std::uint8_t>((type & 0x0F) | (counter_ << 4));
+  out_[5] = static_cast<std::uint8_t>((type & 0x0F) | (*counter_ << 4));
   std::copy(payload.begin(), payload.end(), out_.begin() + kMailboxHeaderSize);
   // The whole buffer: the ESC completes the write only when its last byte is written.
   const Wkc wkc = transport_.fpwr(config_.station, config_.rx_offset, out_);

@@ -60,7 +60,14 @@ struct MailboxConfig {
 
 class MailboxClient {
 public:
-  MailboxClient(Transport& transport, const MailboxConfig& config, Nanos timeout = 1'000'000'000);
+  // `counter`: the slave's mailbox counter (Slave::mailbox_counter) when several clients talk to
+  // one slave in turn. A slave drops a message whose counter repeats the previous one's as a
+  // duplicate (ETG.1000.4), so a new client must continue the sequence, not restart it at 1.
+  // nullptr: the client counts on its own. The counter must outlive the client.
+  MailboxClient(Transport& transport, const MailboxConfig& config, Nanos timeout = 1'000'000'000,
+                std::uint8_t* counter = nullptr);
+  MailboxClient(const MailboxClient&) = delete;  // counter_ may point into the object
+  MailboxClient& operator=(const MailboxClient&) = delete;
 
   // Largest payload one message carries (mailbox size minus the 6-byte header).
   std::size_t max_payload() const { return config_.rx_size - kMailboxHeaderSize; }
@@ -88,7 +95,8 @@ private:
   Transport& transport_;
   MailboxConfig config_;
   Nanos timeout_;
-  std::uint8_t counter_ = 0;
+  std::uint8_t own_counter_ = 0;
+  std::uint8_t* counter_;  // last counter sent (1..7): own_counter_ or the slave's
   std::vector<std::uint8_t> out_, in_;
   std::deque<Emergency> emergencies_;
   std::uint64_t repeats_ = 0;

@@ -113,7 +113,7 @@ SdoClient& Master::sdo(std::size_t index) {
   if (!sdos_[index]) {
     const MailboxConfig config{s.station, s.mailbox_sm[0].start, s.mailbox_sm[0].length, s.mailbox_sm[1].start,
                                s.mailbox_sm[1].length};
-    mailboxes_[index] = std::make_unique<MailboxClient>(transport_, config, mailbox_timeout_);
+    mailboxes_[index] = std::make_unique<MailboxClient>(transport_, config, mailbox_timeout_, &s.mailbox_counter);
     mailboxes_[index]->flush();  // a reply left over from an earlier master is not ours
     sdos_[index] = std::make_unique<SdoClient>(*mailboxes_[index]);
   }

@@ -58,6 +58,7 @@ struct Slave {
   // them before request_state() (e.g. to test a slave's mailbox checks).
   std::array<SmSetting, 2> mailbox_sm{};
   AlStatus al;                         // last AL status read
+  std::uint8_t mailbox_counter = 0;    // last mailbox counter sent (1..7), shared by its clients
   SlaveProcessData process_data;       // filled by configure_process_data()
   bool dc_supported = false;           // ESC feature 0x0008 bit 2, read at scan()
   std::int64_t dc_delay = 0;           // propagation delay from the reference clock (ns), by configure_dc()

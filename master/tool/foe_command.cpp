@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -23,18 +24,19 @@ void add_common(CLI::App* cmd, std::string& iface, std::size_t& slave, std::uint
       ->check(CLI::IsMember({"boot", "preop"}, CLI::ignore_case));
 }
 
-// Scans, checks the slave number and takes the slave to `state`.
-void open(Master& master, std::size_t slave, const std::string& state) {
+// Scans, checks the slave number and takes the slave to `state`. False (with a line on stderr)
+// when the slave does not reach it: exit status 2.
+bool open(Master& master, std::size_t slave, const std::string& state) {
   if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on the interface");
   if (slave >= master.slaves().size()) {
     throw std::invalid_argument(fmt::format("--slave {}: the line has {} slaves (0..{})", slave, master.slaves().size(),
                                             master.slaves().size() - 1));
   }
   const AlState target = state == "boot" ? AlState::Boot : AlState::PreOp;
-  if (!master.request_state(slave, target)) {
-    throw std::runtime_error(fmt::format("slave did not reach {}: {}", to_string(target),
-                                         describe(master.slaves()[slave])));
-  }
+  if (master.request_state(slave, target)) return true;
+  std::fprintf(stderr, "vdrive-master: slave did not reach %s: %s\n", std::string(to_string(target)).c_str(),
+               describe(master.slaves()[slave]).c_str());
+  return false;
 }
 }  // namespace
 
@@ -67,7 +69,7 @@ int FoeCommand::run_write() {
   const std::string name = name_.empty() ? std::filesystem::path(file_).filename().string() : name_;
   vdrive::link::RawSocketLink link(iface_);
   Master master(link);
-  open(master, slave_, state_.empty() ? "boot" : state_);
+  if (!open(master, slave_, state_.empty() ? "boot" : state_)) return 2;
   FoeClient foe(master, slave_);
   foe.write(name, data, password_);
   std::printf("%s: %zu bytes written as \"%s\" in %zu packets (%llu sent again, %llu busy)\n",
@@ -84,7 +86,7 @@ int FoeCommand::run_write() {
 int FoeCommand::run_read() {
   vdrive::link::RawSocketLink link(iface_);
   Master master(link);
-  open(master, slave_, state_.empty() ? "preop" : state_);
+  if (!open(master, slave_, state_.empty() ? "preop" : state_)) return 2;
   FoeClient foe(master, slave_);
   const std::vector<std::uint8_t> data = foe.read(name_, password_);
   std::ofstream out(file_, std::ios::binary);

@@ -13,6 +13,8 @@
 #include "tests/vdrive/mailbox_test_bench.hpp"
 #include "vdrive/firmware/foe/firmware_image.hpp"
 
+long test_vdrive_allocation_count();  // firmware_no_allocation_test.cpp
+
 namespace vdrive::firmware::mailbox_test {
 namespace {
 
@@ -107,19 +109,27 @@ TEST(FoeDownload, CompleteDownloadInBootChangesTheVersionAfterTheRestart) {
 }
 
 TEST(FoeDownload, FileOfWholePacketsEndsWithAnEmptyPacket) {
-  Bench b(ds1000a());
+  TempDir state;
+  Bench b(ds1000a(), {}, state.path);
   to_boot(b);
   ASSERT_EQ(foe_reply(b.exchange(kFoE, foe(kWrq, 0, text(kName)))).op, kAck);
-  // 48-byte header + 184 bytes = 232 = 2 x 116: both full, so a third, empty packet ends it.
+  // 48-byte header + 184 bytes = 232 = 2 x 116: both packets are full, so neither ends the file;
+  // a third, empty packet does (ETG.1000.6: a packet shorter than the mailbox allows is the last).
   const std::vector<std::uint8_t> file = image("DS1000A-EC", "V2.03/1.00", 184);
   ASSERT_EQ(file.size(), 232u);
-  const FoeReply second = send_file(b, file);
-  EXPECT_EQ(second.op, kAck);
-  EXPECT_EQ(second.field, 2u);
-  EXPECT_EQ(version_object(b), "V1.00/1.00");
+  const std::string stored = state.path + "/ds1000a-00000000.firmware";
+  for (std::uint32_t packet = 1; packet <= 2; ++packet) {
+    const auto at = file.begin() + static_cast<std::ptrdiff_t>((packet - 1) * 116);
+    const FoeReply r = foe_reply(b.exchange(kFoE, foe(kData, packet, {at, at + 116})));
+    EXPECT_EQ(r.op, kAck) << packet;
+    EXPECT_EQ(r.field, packet);
+  }
+  EXPECT_FALSE(std::filesystem::exists(stored)) << "two full packets: the file is not complete yet";
   const FoeReply end = foe_reply(b.exchange(kFoE, foe(kData, 3)));
   EXPECT_EQ(end.op, kAck);
   EXPECT_EQ(end.field, 3u);
+  EXPECT_TRUE(std::filesystem::exists(stored)) << "the empty packet ended the file: image programmed";
+  EXPECT_EQ(version_object(b), "V1.00/1.00");
   b.request_state(AlState::Init);
   EXPECT_EQ(version_object(b), "V2.03/1.00");
 }
@@ -162,13 +172,27 @@ TEST(FoeDownload, FileBeyond256KiBIsDiskFull8003) {
   Bench b(ds1000a());
   to_boot(b);
   ASSERT_EQ(foe_reply(b.exchange(kFoE, foe(kWrq, 0, text(kName)))).op, kAck);
-  const std::vector<std::uint8_t> file(256 * 1024 + 116, 0xA5);  // full packets past the limit
+  // 256 KiB + 1 = 2259 full packets of 116 bytes + 101: the short packet 2260 no longer fits.
+  const std::vector<std::uint8_t> file = image("DS1000A-EC", "V1.30/1.00", 256 * 1024 + 1 - 48);
   const FoeReply r = send_file(b, file);
   EXPECT_EQ(r.op, kErr);
   EXPECT_EQ(r.field, 0x8003u) << "disk full";
-  // 256 KiB = 2259 full packets + 112 bytes: packet 2260 no longer fits.
+  const FoeReply after = foe_reply(b.exchange(kFoE, foe(kData, 2261)));
+  EXPECT_EQ(after.field, 0x8004u) << "the error ended the transfer";
   b.request_state(AlState::Init);
   EXPECT_EQ(version_object(b), "V1.00/1.00");
+}
+
+TEST(FoeDownload, FileOfExactly256KiBIsTaken) {
+  Bench b(ds1000a());
+  to_boot(b);
+  ASSERT_EQ(foe_reply(b.exchange(kFoE, foe(kWrq, 0, text(kName)))).op, kAck);
+  const std::vector<std::uint8_t> file = image("DS1000A-EC", "V1.30/1.00", 256 * 1024 - 48);
+  const FoeReply r = send_file(b, file);
+  EXPECT_EQ(r.op, kAck);
+  EXPECT_EQ(r.field, 2260u) << "2259 full packets + 100 bytes";
+  b.request_state(AlState::Init);
+  EXPECT_EQ(version_object(b), "V1.30/1.00");
 }
 
 TEST(FoeDownload, OtherFileNameIs8009InBootAnd8002Outside) {
@@ -195,13 +219,30 @@ TEST(FoeDownload, PasswordOtherThanZeroIs800A) {
 TEST(FoeDownload, FirmwareOutsideBootIs8008BootstrapOnly) {
   Bench b(ds1000a());
   b.to_preop();
-  const auto reply = b.exchange(kFoE, foe(kWrq, 0, text(kName)));
-  const FoeReply r = foe_reply(reply);
-  EXPECT_EQ(r.op, kErr);
-  EXPECT_EQ(r.field, 0x8008u) << "bootstrap only";
-  ASSERT_TRUE(reply.has_value());
-  const std::string message(reply->begin() + 12, reply->end());
-  EXPECT_EQ(message, "Bootstrap only") << "error text (ETG.1000.6)";
+  for (const AlState state : {AlState::PreOp, AlState::SafeOp, AlState::Op}) {
+    SCOPED_TRACE(static_cast<int>(state));
+    b.request_state(state);
+    ASSERT_EQ(b.esm.state(), state);
+    const auto reply = b.exchange(kFoE, foe(kWrq, 0, text(kName)));
+    const FoeReply r = foe_reply(reply);
+    EXPECT_EQ(r.op, kErr);
+    EXPECT_EQ(r.field, 0x8008u) << "bootstrap only";
+    ASSERT_TRUE(reply.has_value());
+    const std::string message(reply->begin() + 12, reply->end());
+    EXPECT_EQ(message, "Bootstrap only") << "error text (ETG.1000.6)";
+    const FoeReply data = foe_reply(b.exchange(kFoE, foe(kData, 1, std::vector<std::uint8_t>(116, 0))));
+    EXPECT_EQ(data.field, 0x8004u) << "no transfer was opened";
+  }
+}
+
+TEST(FoeDownload, NoFoeInInit) {
+  // In Init the mailbox does not run: a request stays unanswered (ETG.1000.6: mailbox from Pre-Op/Boot).
+  Bench b(ds1000a());
+  b.configure_sm(0, b.sm0_start(), b.sm0_length(), 0x26);
+  b.configure_sm(1, b.sm1_start(), b.sm1_length(), 0x22);
+  ASSERT_EQ(b.esm.state(), AlState::Init);
+  b.send(message(kFoE, 1, foe(kWrq, 0, text(kName))));
+  EXPECT_FALSE(b.receive().has_value());
 }
 
 TEST(FoeDownload, ForeignOrDamagedImageIsRefusedAndTheOldVersionStays) {
@@ -230,6 +271,44 @@ TEST(FoeDownload, ForeignOrDamagedImageIsRefusedAndTheOldVersionStays) {
     b.request_state(AlState::Init);
     EXPECT_EQ(version_object(b), "V1.00/1.00") << i;
   }
+}
+
+// The download runs in the firmware's interrupt path: no allocation there (docs/architecture.md).
+TEST(FoeDownload, DownloadAllocatesNothing) {
+  Bench b(ds1000a());
+  to_boot(b);
+  const std::uint16_t rx = *b.product.mailbox.boot_rx_offset, rx_size = *b.product.mailbox.boot_rx_size;
+  const std::uint16_t tx = *b.product.mailbox.boot_tx_offset, tx_size = *b.product.mailbox.boot_tx_size;
+  const std::vector<std::uint8_t> file = image("DS1000A-EC", "V1.40/1.00", 1000);  // 1048 bytes: 10 packets
+  // Frames built beforehand; the count covers the ESC, the mailbox, the FoE server and its store.
+  std::vector<std::vector<std::uint8_t>> writes, reads;
+  auto add = [&](const std::vector<std::uint8_t>& payload) {
+    std::vector<std::uint8_t> window(rx_size, 0);
+    const auto m = message(kFoE, static_cast<std::uint8_t>(writes.size() % 7 + 1), payload);
+    std::copy(m.begin(), m.end(), window.begin());
+    writes.push_back(Bench::pdu(0x02, rx, window));
+    reads.push_back(Bench::pdu(0x01, tx, std::vector<std::uint8_t>(tx_size, 0)));
+  };
+  add(foe(kWrq, 0, text(kName)));
+  for (std::size_t at = 0, packet = 1; at <= file.size(); at += 116, ++packet) {
+    const auto from = file.begin() + static_cast<std::ptrdiff_t>(at);
+    const auto to = file.begin() + static_cast<std::ptrdiff_t>(std::min(file.size(), at + 116));
+    add(foe(kData, static_cast<std::uint32_t>(packet), {from, to}));
+  }
+  const long before = test_vdrive_allocation_count();
+  for (std::size_t i = 0; i < writes.size(); ++i) {
+    b.run(writes[i]);
+    b.run(reads[i]);
+  }
+  EXPECT_EQ(test_vdrive_allocation_count() - before, 0);
+  // And it was a real download: the last reply is ACK 10 (read frame: 2-byte frame header,
+  // 10-byte datagram header, 6-byte mailbox header, then op code and packet number).
+  const std::vector<std::uint8_t>& last = reads.back();
+  EXPECT_EQ(last[last.size() - 2], 1) << "working counter";
+  EXPECT_EQ(last[12 + 6], kAck);
+  EXPECT_EQ(last[12 + 6 + 2], 10);
+  b.request_state(AlState::Init);
+  EXPECT_EQ(version_object(b), "V1.40/1.00");
 }
 
 TEST(FoeDownload, ReadRequestIsNotFound) {
