@@ -107,6 +107,30 @@ TEST_P(EsmChange, LeavingOpWhileDisabledIsNoAlarm) {
 INSTANTIATE_TEST_SUITE_P(Products, EsmChange, ::testing::ValuesIn(kEsmChange),
                          [](const auto& info) { return std::string(info.param.product); });
 
+// An AL status code the firmware reports becomes the product's alarm with that code (A6B 80.4 for
+// 001Bh, L32567-L32645); such an alarm clears only once the master acknowledged the AL error
+// (AL control bit 4, L34013-L34017; DS5C1 L7394-L7396).
+TEST(AlErrorAlarm, ClearsOnlyAfterTheAlAcknowledge) {
+  for (const char* id : {"a6b", "ds5c1"}) {
+    SCOPED_TRACE(id);
+    EngineBench b(id);
+    ASSERT_TRUE(b.enable(mode::csp)) << b.diag();
+    b.bus.al_error_pending = true;
+    ASSERT_TRUE(b.engine().raise_al_error(0x001B, b.now()));
+    b.run(300 * kMs);
+    EXPECT_EQ(b.get(0x603F), 0xFF50) << b.diag();  // A6B Err80.4, DS5C1 E-804
+    EXPECT_EQ(b.engine().state(), PdsState::Fault);
+    b.command(kCwFaultReset, 5 * kMs);
+    EXPECT_EQ(b.engine().state(), PdsState::Fault) << "refused before the AL acknowledge";
+    b.command(0, 5 * kMs);
+    b.bus.al_error_pending = false;  // the master acknowledged
+    b.command(kCwFaultReset, 5 * kMs);
+    EXPECT_EQ(b.engine().state(), PdsState::SwitchOnDisabled) << b.diag();
+    EXPECT_EQ(b.get(0x603F), 0);
+  }
+  EXPECT_FALSE(EngineBench("ds1000a").engine().raise_al_error(0x001B, 0)) << "the DS1000A-EC lists no such alarm";
+}
+
 // A6B: enabling with 6060h = 6061h = 0 is Err88.1 (L10625); DS5C1 E-881 (L7136); the DS1000A-EC
 // ignores unsupported modes and has no alarm for it (L1606-L1608).
 TEST(NoModeAtEnable, A6bAndDs5c1RaiseTheirAlarmDs1000aDoesNot) {

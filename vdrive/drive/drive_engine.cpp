@@ -136,7 +136,7 @@ void DriveEngine::power_on(Nanos now) {
   publish(sample_, fb);
 }
 
-void DriveEngine::esm_changed(firmware::AlState from, firmware::AlState to, Nanos now) {
+void DriveEngine::esm_changed(firmware::AlState from, firmware::AlState to, Nanos now, bool by_error) {
   using firmware::AlState;
   if (to == AlState::Init) probe_.cancel();
   if (from == AlState::Init && to == AlState::PreOp) {
@@ -144,7 +144,7 @@ void DriveEngine::esm_changed(firmware::AlState from, firmware::AlState to, Nano
     latch_units();
   }
   if (from == AlState::PreOp && to == AlState::SafeOp) latch_units();  // startup SDOs are written by now
-  if (from == AlState::Op && firmware::rank(to) < firmware::rank(from) && pds_.power_stage_on())
+  if (!by_error && from == AlState::Op && firmware::rank(to) < firmware::rank(from) && pds_.power_stage_on())
     raise_cause(profile_.drive.alarms.esm_change_while_enabled, now);
 }
 
@@ -158,6 +158,15 @@ bool DriveEngine::raise_alarm(std::string_view code, Nanos now) {
   if (!a) return false;
   alarms_.raise(*a, now);
   return true;
+}
+
+bool DriveEngine::raise_al_error(std::uint16_t al_status_code, Nanos now) {
+  for (const profile::AlarmSpec& a : profile_.alarms) {
+    if (a.al_status_code != al_status_code) continue;
+    alarms_.raise(a, now);
+    return true;
+  }
+  return false;
 }
 
 void DriveEngine::raise_cause(const std::string& code, Nanos t) {

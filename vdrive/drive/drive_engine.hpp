@@ -57,8 +57,9 @@ public:
   // Control power on at `now` (the store was reset to defaults and the stored parameters loaded).
   void power_on(Nanos now);
   // The ESM moved from `from` to `to`. Leaving Op while the power stage is on is the product's
-  // "ESM change while enabled" alarm (A6B Err88.2, DS5C1 E-882, DS1000A-EC FF80h).
-  void esm_changed(firmware::AlState from, firmware::AlState to, Nanos now);
+  // "ESM change while enabled" alarm (A6B Err88.2, DS5C1 E-882, DS1000A-EC FF80h), unless the
+  // move was an EtherCAT error that already raised its own alarm (`by_error`).
+  void esm_changed(firmware::AlState from, firmware::AlState to, Nanos now, bool by_error = false);
   // New outputs reached the RxPDO objects (a bus cycle): cyclic modes take their set-point.
   void outputs_taken(Nanos now);
   // Runs every control step due up to `now`.
@@ -76,6 +77,8 @@ public:
   std::size_t axis() const { return axis_; }
   // Raise a vendor alarm by its code ("24.0", "E-100", "FF02h"); false if the product has none.
   bool raise_alarm(std::string_view code, Nanos now);
+  // Raise the alarm whose AL status code is `al_status_code`; false if the product has none.
+  bool raise_al_error(std::uint16_t al_status_code, Nanos now);
   // Main (power-stage) supply present (PDS transition 3 needs it).
   void set_main_power(bool on) { main_power_ = on; }
   // The STO / TO input (true = torque off requested).

@@ -27,14 +27,28 @@ vdrive::drive::BusState DriveModule::bus() const {
   return b;
 }
 
-void DriveModule::power_on(Nanos now) { engine_->power_on(now); }
+void DriveModule::power_on(Nanos now) {
+  al_error_seen_ = 0;
+  engine_->power_on(now);
+}
+
+bool DriveModule::raise_al_error(Nanos now) {
+  const std::uint16_t code = context_.esm.error() ? context_.esm.error_code() : 0;
+  if (code == al_error_seen_) return false;
+  al_error_seen_ = code;
+  return code != 0 && engine_->raise_al_error(code, now);
+}
 
 void DriveModule::entered(AlState from, AlState to, Nanos now) {
   engine_->advance_to(now, bus());
-  engine_->esm_changed(from, to, now);
+  const bool by_error = raise_al_error(now);
+  engine_->esm_changed(from, to, now, by_error);
 }
 
-void DriveModule::tick(Nanos now) { engine_->advance_to(now, bus()); }
+void DriveModule::tick(Nanos now) {
+  raise_al_error(now);
+  engine_->advance_to(now, bus());
+}
 
 Nanos DriveModule::next_deadline() const { return engine_->next_step(); }
 

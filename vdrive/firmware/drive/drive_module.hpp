@@ -4,6 +4,11 @@
 // the engine's control steps on the firmware's clock: at their own period through tick(), and up to
 // the instant of each process-data exchange (outputs taken over, inputs about to be gathered), so
 // the TxPDO carries the drive's state at that moment. Emergencies go out through the mailbox.
+// EtherCAT errors become the product's alarms: an AL status code the firmware reports (watchdog
+// 001Bh, lost SYNC0 002Ch, a refused transition ...) raises the alarm of alarms.yaml with that
+// al_status_code (A6B Err80.x/81.x/85.x, DS5C1 E-80x/E-81x/E-85x), whose clearing then waits for
+// the master's AL acknowledge; leaving Op while enabled without such an error is the product's
+// "ESM change" alarm (A6B Err88.2, DS5C1 E-882, DS1000A-EC FF80h).
 // Installed for products that list drive modes (6502h != 0).
 #include <memory>
 
@@ -34,10 +39,13 @@ public:
 
 private:
   vdrive::drive::BusState bus() const;
+  // Raises the alarm for a new AL status code; true if the product has one for it.
+  bool raise_al_error(Nanos now);
 
   FirmwareContext& context_;
   plant::Plant plant_;
   std::unique_ptr<vdrive::drive::DriveEngine> engine_;
+  std::uint16_t al_error_seen_ = 0;   // the AL status code already turned into an alarm
 };
 
 }  // namespace vdrive::firmware::drive_module
