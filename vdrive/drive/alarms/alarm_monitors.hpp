@@ -16,7 +16,7 @@
 
 #include "common/clock.hpp"
 #include "vdrive/drive/alarms/alarm_manager.hpp"
-#include "vdrive/drive/alarms/parameter_value.hpp"
+#include "vdrive/drive/parameter_value.hpp"
 #include "vdrive/drive/drive_context.hpp"
 
 namespace vdrive::drive {

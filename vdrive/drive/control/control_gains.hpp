@@ -6,7 +6,7 @@
 //   J_tot = J_rotor (1 + inertia ratio)   (P0-07, L8658; P1-00 x P1-01 ~ 636620, L6686)
 //   position loop  w_ref = Kp e_theta + k_ff w_ff.
 #include "plant/plant_description.hpp"
-#include "vdrive/drive/control/parameter_value.hpp"
+#include "vdrive/drive/parameter_value.hpp"
 #include "vdrive/drive/drive_context.hpp"
 
 namespace vdrive::drive {

@@ -10,7 +10,7 @@
 // The mode applies to positioning ("位置決め時モード", L4040): velocity and torque set-points always
 // run closed loop. Leaving open loop re-arms the cascade from the axis as it is (bumpless).
 #include "vdrive/drive/control/control_loop.hpp"
-#include "vdrive/drive/control/parameter_value.hpp"
+#include "vdrive/drive/parameter_value.hpp"
 #include "vdrive/drive/control/servo_loop.hpp"
 
 namespace vdrive::drive {
