@@ -62,8 +62,10 @@ std::string_view foe_error_text(std::uint32_t code) {
 }
 
 FoeError::FoeError(std::uint32_t code, std::string slave_text)
+    // The slave's text only where it says more than the code's name.
     : std::runtime_error(fmt::format("FoE error 0x{:04X} ({}){}{}", code, foe_error_text(code),
-                                     slave_text.empty() ? "" : ": ", slave_text)),
+                                     slave_text.empty() || slave_text == foe_error_text(code) ? "" : ": ",
+                                     slave_text == foe_error_text(code) ? "" : slave_text)),
       code_(code),
       slave_text_(std::move(slave_text)) {}
 

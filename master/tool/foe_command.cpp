@@ -57,7 +57,10 @@ int FoeCommand::run() {
   try {
     return write_->parsed() ? run_write() : run_read();
   } catch (const FoeError& e) {
-    std::fprintf(stderr, "vdrive-master: %s\n", e.what());
+    // 0x8009: the name is not one the slave takes in Boot (SSC and the vdrive DS1000A-EC: a
+    // firmware file's name starts with ECATFW__, docs/foe.md).
+    std::fprintf(stderr, "vdrive-master: %s%s\n", e.what(),
+                 e.code() == 0x8009 ? " (firmware files are taken in Boot under a name starting ECATFW__)" : "");
     return 1;
   }
 }

@@ -165,6 +165,43 @@ TEST(Overspeed, A6bBeyondPr513IsErr26) {
   EXPECT_LT(std::abs(b.motor_rpm()), 30.0) << "immediate stop";
 }
 
+// Servo overload (I^2 t): a motor stalled against a hard stop at twice its rated torque passes the
+// load factor level (A6B 3512h -> 115 %, Err16.0 603Fh FF10h L32694; DS5C1 E-161 FF10h L7196) in
+// about tau ln(4 / (4 - 1.15)) = 6.8 s; at 80 % of rated it never does. A6B Err16.0 clears only 10 s
+// after it occurred (L32918).
+TEST(Overload, StallAtTwiceRatedTorqueTripsTheServosOverload) {
+  for (const char* id : {"a6b", "ds5c1"}) {
+    SCOPED_TRACE(id);
+    for (const double permille : {800.0, 2000.0}) {
+      // The load on a hinge with a hard end stop half a turn ahead: the motor pushes against it.
+      EngineBench b(id, [](profile::ProductProfile&, plant::PlantDescription& d) {
+        const double inertia = d.axes[0].motor.rotor_inertia_kgm2;
+        d.bodies.push_back({.name = "load", .mass_kg = 1.0, .position_m = {0, 0, 0}, .inertia_kgm2 = {inertia, inertia, inertia}});
+        plant::JointSpec j;
+        j.name = "stop";
+        j.child = "load";
+        j.lower_stop = -3.0;
+        j.upper_stop = 3.0;
+        d.joints.push_back(j);
+        d.axes[0].joint = "stop";
+      });
+      ASSERT_TRUE(b.enable(mode::cst)) << b.diag();
+      const Nanos t0 = b.now();
+      b.run_until([&] { return b.engine().state() != PdsState::OperationEnabled; }, 12'000 * kMs,
+                  [&](Nanos) { b.set(0x6071, 0, std::llround(permille)); });
+      const double seconds = static_cast<double>(b.now() - t0) * 1e-9;
+      if (permille < 1000.0) {
+        EXPECT_EQ(b.engine().state(), PdsState::OperationEnabled) << "80 % of rated is no overload";
+        continue;
+      }
+      EXPECT_NEAR(seconds, 20.0 * std::log(4.0 / (4.0 - 1.15)), 0.5) << b.diag();
+      b.run(500 * kMs);
+      EXPECT_EQ(b.get(0x603F), 0xFF10) << b.diag();
+      EXPECT_EQ(b.engine().state(), PdsState::Fault);
+    }
+  }
+}
+
 // A6B: a positive limit switch stops pv motion into it with the quick-stop deceleration and shows
 // 6041h bit 11 (3504h = 1, L27674-L27683), without an alarm.
 TEST(LimitSwitch, A6bStopsMotionIntoTheActiveLimit) {

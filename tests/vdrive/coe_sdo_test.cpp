@@ -118,6 +118,16 @@ TEST_P(SdoOnProduct, CompleteAccessIsRefusedWithTheProductsCode) {
   const std::uint32_t expected = GetParam() == "a6b" ? 0x06010000u : 0x06010004u;
   EXPECT_EQ(sdo_read(b, 0x1018, 0, true).abort, expected);
   EXPECT_EQ(sdo_write(b, 0x1C12, 0, {1, 0, 0x00, 0x16}, true).abort, expected);
+  EXPECT_EQ(expected, b.product.complete_access_abort);  // profile.yaml complete_access_abort
+}
+
+// The refusal is the profile's complete_access_abort, whatever the product.
+TEST(SdoCompleteAccess, RefusalCodeComesFromTheProfile) {
+  profile::ProductProfile p = load("ds5c1");
+  p.complete_access_abort = 0x06010000;
+  Bench b(p);
+  b.to_preop();
+  EXPECT_EQ(sdo_read(b, 0x1018, 0, true).abort, 0x06010000u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Products, SdoOnProduct, ::testing::Values("a6b", "ds5c1", "ds1000a"));

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "tests/vdrive/firmware_test_products.hpp"
+#include "tests/vdrive/product_profiles.hpp"
 #include "vdrive/firmware/al_state_machine.hpp"
 
 namespace vdrive::firmware {
@@ -59,13 +59,13 @@ public:
 // ---- valid transitions ---------------------------------------------------------------------
 
 TEST(FirmwareAlStateMachine, PowerOnIsInitWithoutError) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   EXPECT_EQ(m.esm.status_register(), 0x0001);
   EXPECT_EQ(m.esm.status_code_register(), 0x0000);
 }
 
 TEST(FirmwareAlStateMachine, WalksUpOneStepAtATimeRunningEachCheck) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.write(request(S::PreOp));
   EXPECT_EQ(m.esm.status_register(), 0x0002);
   m.write(request(S::SafeOp));
@@ -87,7 +87,7 @@ class FirmwareAlStateMachineDown : public ::testing::TestWithParam<DownCase> {};
 
 TEST_P(FirmwareAlStateMachineDown, GoingDownIsAlwaysAllowedAndUnchecked) {
   const DownCase c = GetParam();
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(c.from);
   m.hooks.checks.clear();
   m.hooks.entered_log.clear();
@@ -108,7 +108,7 @@ INSTANTIATE_TEST_SUITE_P(AllDownTransitions, FirmwareAlStateMachineDown,
 
 TEST(FirmwareAlStateMachine, SameStateRequestChangesNothing) {
   for (S s : {S::Init, S::PreOp, S::SafeOp, S::Op}) {
-    Esm m(test::a6b_product());
+    Esm m(test::product("a6b"));
     m.bring_to(s);
     m.hooks.checks.clear();
     m.hooks.entered_log.clear();
@@ -129,15 +129,9 @@ struct InvalidCase {
 class FirmwareAlStateMachineInvalid
     : public ::testing::TestWithParam<std::tuple<InvalidCase, std::string>> {};
 
-profile::ProductProfile product_by_id(const std::string& id) {
-  if (id == "a6b") return test::a6b_product();
-  if (id == "ds5c1") return test::ds5c1_product();
-  return test::ds1000a_product();
-}
-
 TEST_P(FirmwareAlStateMachineInvalid, ReportsInvalidTransitionAndStaysOpFallsToSafeOp) {
   const auto& [c, product_id] = GetParam();
-  Esm m(product_by_id(product_id));
+  Esm m(test::product(product_id));
   m.bring_to(c.from);
   ASSERT_EQ(m.esm.state(), c.from);
   m.hooks.checks.clear();
@@ -171,7 +165,7 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(std::string("a6b"), std::string("ds1000a"))));
 
 TEST(FirmwareAlStateMachine, InvalidTransitionFromOpStopsOutputsViaEntered) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::Op);
   m.hooks.entered_log.clear();
   m.write(request(S::Boot));
@@ -185,7 +179,7 @@ TEST(FirmwareAlStateMachine, UnknownRequestedStateFromEveryState) {
   for (const auto& id : {std::string("a6b"), std::string("ds5c1"), std::string("ds1000a")}) {
     for (S from : {S::Init, S::PreOp, S::SafeOp, S::Op}) {
       for (std::uint8_t value : {0, 5, 6, 7, 9, 10, 11, 12, 13, 14, 15}) {
-        Esm m(product_by_id(id));
+        Esm m(test::product(id));
         m.bring_to(from);
         m.write(request(value));
         const S after = from == S::Op ? S::SafeOp : from;  // L33007-L33037, L7114
@@ -200,7 +194,7 @@ TEST(FirmwareAlStateMachine, UnknownRequestedStateFromEveryState) {
 // ---- Bootstrap ----------------------------------------------------------------------------
 
 TEST(FirmwareAlStateMachine, A6bEntersBootAfterTheBootMailboxCheck) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.write(request(S::Boot));
   EXPECT_EQ(m.esm.status_register(), 0x0003);
   EXPECT_EQ(m.hooks.checks, std::vector<std::string>{"IB"});
@@ -209,7 +203,7 @@ TEST(FirmwareAlStateMachine, A6bEntersBootAfterTheBootMailboxCheck) {
 }
 
 TEST(FirmwareAlStateMachine, Ds1000aBootMailboxFailureReports0015AndStaysInit) {
-  Esm m(test::ds1000a_product());
+  Esm m(test::product("ds1000a"));
   m.hooks.init_to_boot = {0x0015, S::Init};
   m.write(request(S::Boot));
   EXPECT_EQ(m.esm.status_register(), 0x0011);  // Init | error
@@ -218,7 +212,7 @@ TEST(FirmwareAlStateMachine, Ds1000aBootMailboxFailureReports0015AndStaysInit) {
 
 TEST(FirmwareAlStateMachine, Ds5c1RefusesBootWith0013AndStaysInit) {
   // E-802 (L7115): AL 0013h, ESM after the error: Init.
-  Esm m(test::ds5c1_product());
+  Esm m(test::product("ds5c1"));
   m.write(request(S::Boot));
   EXPECT_EQ(m.esm.status_register(), 0x0011);
   EXPECT_EQ(m.esm.status_code_register(), 0x0013);
@@ -228,7 +222,7 @@ TEST(FirmwareAlStateMachine, Ds5c1RefusesBootWith0013AndStaysInit) {
 // ---- transition checks --------------------------------------------------------------------
 
 TEST(FirmwareAlStateMachine, FailedMailboxCheckLeavesInitWithItsCode) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.hooks.init_to_preop = {0x0016, S::Init};
   m.write(request(S::PreOp));
   EXPECT_EQ(m.esm.status_register(), 0x0011);
@@ -237,7 +231,7 @@ TEST(FirmwareAlStateMachine, FailedMailboxCheckLeavesInitWithItsCode) {
 }
 
 TEST(FirmwareAlStateMachine, FailedPreOpToSafeOpCheckStaysPreOp) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::PreOp);
   m.hooks.preop_to_safeop = {0x001D, S::PreOp};
   m.write(request(S::SafeOp));
@@ -246,7 +240,7 @@ TEST(FirmwareAlStateMachine, FailedPreOpToSafeOpCheckStaysPreOp) {
 }
 
 TEST(FirmwareAlStateMachine, CheckMayDropTheSlaveLower) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::SafeOp);
   m.hooks.entered_log.clear();
   m.hooks.safeop_to_op = {0x0016, S::Init};
@@ -260,7 +254,7 @@ TEST(FirmwareAlStateMachine, CheckMayDropTheSlaveLower) {
 // ---- error flag and acknowledge --------------------------------------------------------------
 
 TEST(FirmwareAlStateMachine, WithErrorPendingAHigherRequestWithoutAckIsIgnored) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::PreOp);
   m.write(request(S::Op));  // invalid: PreOp | error, 0x0011
   m.hooks.checks.clear();
@@ -271,7 +265,7 @@ TEST(FirmwareAlStateMachine, WithErrorPendingAHigherRequestWithoutAckIsIgnored) 
 }
 
 TEST(FirmwareAlStateMachine, AckWithAHigherRequestClearsTheErrorAndTransitions) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::PreOp);
   m.write(request(S::Op));
   m.write(request(S::SafeOp, /*ack=*/true));
@@ -280,7 +274,7 @@ TEST(FirmwareAlStateMachine, AckWithAHigherRequestClearsTheErrorAndTransitions) 
 }
 
 TEST(FirmwareAlStateMachine, AckWithTheSameStateClearsTheError) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::SafeOp);
   m.write(request(S::Boot));  // invalid: SafeOp | error
   m.write(request(S::SafeOp, /*ack=*/true));
@@ -289,7 +283,7 @@ TEST(FirmwareAlStateMachine, AckWithTheSameStateClearsTheError) {
 }
 
 TEST(FirmwareAlStateMachine, AckWithALowerStateClearsTheErrorAndGoesDown) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::SafeOp);
   m.write(request(S::Boot));
   m.write(request(S::PreOp, /*ack=*/true));
@@ -298,7 +292,7 @@ TEST(FirmwareAlStateMachine, AckWithALowerStateClearsTheErrorAndGoesDown) {
 }
 
 TEST(FirmwareAlStateMachine, WithErrorPendingALowerNonInitRequestWithoutAckIsIgnored) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::SafeOp);
   m.write(request(S::Boot));
   m.write(request(S::PreOp));
@@ -307,7 +301,7 @@ TEST(FirmwareAlStateMachine, WithErrorPendingALowerNonInitRequestWithoutAckIsIgn
 }
 
 TEST(FirmwareAlStateMachine, InitRequestClearsTheErrorEvenWithoutAck) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.hooks.init_to_preop = {0x0016, S::Init};
   m.write(request(S::PreOp));
   ASSERT_TRUE(m.esm.error());
@@ -317,7 +311,7 @@ TEST(FirmwareAlStateMachine, InitRequestClearsTheErrorEvenWithoutAck) {
 }
 
 TEST(FirmwareAlStateMachine, RetryAfterFixingTheMailboxNeedsAck) {
-  Esm m(test::ds5c1_product());
+  Esm m(test::product("ds5c1"));
   m.hooks.init_to_preop = {0x0016, S::Init};
   m.write(request(S::PreOp));
   m.hooks.init_to_preop = CheckResult::pass();  // master fixed the SMs
@@ -329,7 +323,7 @@ TEST(FirmwareAlStateMachine, RetryAfterFixingTheMailboxNeedsAck) {
 }
 
 TEST(FirmwareAlStateMachine, UnknownRequestWithErrorPendingIsIgnoredWithoutAck) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::PreOp);
   m.write(request(S::Op));        // 0x0011
   m.write(request(std::uint8_t{6}));  // would be 0x0012, but the error is not acknowledged
@@ -340,13 +334,13 @@ TEST(FirmwareAlStateMachine, UnknownRequestWithErrorPendingIsIgnoredWithoutAck) 
 }
 
 TEST(FirmwareAlStateMachine, AckWithoutErrorIsHarmless) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.write(request(S::PreOp, /*ack=*/true));
   EXPECT_EQ(m.esm.status_register(), 0x0002);
 }
 
 TEST(FirmwareAlStateMachine, RaiseDropsToTheGivenStateWithError) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::Op);
   m.hooks.entered_log.clear();
   m.esm.raise(S::Init, 0x0016, m.hooks);
@@ -359,7 +353,7 @@ TEST(FirmwareAlStateMachine, RaiseDropsToTheGivenStateWithError) {
 // ---- Explicit Device ID (A6B L5802-L5924) -----------------------------------------------------
 
 TEST(FirmwareAlStateMachine, A6bIdRequestLoadsTheIdAndClearingBit5ClearsIt) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.write(request(S::Init, false, /*id=*/true), 0x1234);
   EXPECT_EQ(m.esm.status_register(), 0x0021);
   EXPECT_EQ(m.esm.status_code_register(), 0x1234);
@@ -372,7 +366,7 @@ TEST(FirmwareAlStateMachine, A6bIdRequestLoadsTheIdAndClearingBit5ClearsIt) {
 }
 
 TEST(FirmwareAlStateMachine, A6bErrorCodeHidesTheIdUntilAcknowledged) {
-  Esm m(test::a6b_product());
+  Esm m(test::product("a6b"));
   m.bring_to(S::PreOp);
   m.write(request(S::Op, false, true), 0x0042);  // invalid transition with ID requested
   EXPECT_EQ(m.esm.status_register(), 0x0032);    // PreOp | error | ID loaded
@@ -383,7 +377,7 @@ TEST(FirmwareAlStateMachine, A6bErrorCodeHidesTheIdUntilAcknowledged) {
 }
 
 TEST(FirmwareAlStateMachine, Ds5c1IgnoresTheIdRequest) {
-  Esm m(test::ds5c1_product());
+  Esm m(test::product("ds5c1"));
   m.write(request(S::Init, false, true), 0x1234);
   EXPECT_EQ(m.esm.status_register(), 0x0001);
   EXPECT_EQ(m.esm.status_code_register(), 0);

@@ -4,15 +4,13 @@
 
 #include <array>
 
-#include "tests/vdrive/firmware_test_products.hpp"
+#include "tests/vdrive/product_profiles.hpp"
 #include "vdrive/firmware/mailbox_sm_check.hpp"
 
 namespace vdrive::firmware {
 namespace {
 
-using test::a6b_product;
-using test::ds1000a_product;
-using test::ds5c1_product;
+using test::product;
 
 SmChannel sm(std::uint16_t start, std::uint16_t length, std::uint8_t control, bool enabled) {
   SmChannel c;
@@ -35,12 +33,12 @@ MailboxSmFault check(const std::array<SmChannel, 4>& sms, const profile::Mailbox
 }
 
 TEST(FirmwareMailboxSmCheck, AcceptsTheSiiLayoutOnA6bAndDs5c1) {
-  EXPECT_EQ(check(good_layout(), a6b_product().mailbox_rules), MailboxSmFault::Ok);
-  EXPECT_EQ(check(good_layout(), ds5c1_product().mailbox_rules), MailboxSmFault::Ok);
+  EXPECT_EQ(check(good_layout(), product("a6b").mailbox_rules), MailboxSmFault::Ok);
+  EXPECT_EQ(check(good_layout(), product("ds5c1").mailbox_rules), MailboxSmFault::Ok);
 }
 
 TEST(FirmwareMailboxSmCheck, EachMailboxSmMustBeEnabled) {
-  const auto rules = a6b_product().mailbox_rules;
+  const auto rules = product("a6b").mailbox_rules;
   auto sms = good_layout();
   sms[0].activate = 0;
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Sm0Disabled);
@@ -50,7 +48,7 @@ TEST(FirmwareMailboxSmCheck, EachMailboxSmMustBeEnabled) {
 }
 
 TEST(FirmwareMailboxSmCheck, A6bLengthBelow32IsRejected) {
-  const auto rules = a6b_product().mailbox_rules;
+  const auto rules = product("a6b").mailbox_rules;
   auto sms = good_layout();
   sms[0].length = 31;
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Sm0Length);
@@ -63,7 +61,7 @@ TEST(FirmwareMailboxSmCheck, A6bLengthBelow32IsRejected) {
 
 TEST(FirmwareMailboxSmCheck, Ds5c1LengthWindows) {
   // SM0 32..256, SM1 40..256 (L7125).
-  const auto rules = ds5c1_product().mailbox_rules;
+  const auto rules = product("ds5c1").mailbox_rules;
   auto sms = good_layout();
   sms[0].length = 257;
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Sm0Length);
@@ -78,7 +76,7 @@ TEST(FirmwareMailboxSmCheck, Ds5c1LengthWindows) {
 
 TEST(FirmwareMailboxSmCheck, Ds5c1StartWindows) {
   // SM0 start 1000h..10FFh, SM1 start 1200h..12FFh (L7125).
-  const auto rules = ds5c1_product().mailbox_rules;
+  const auto rules = product("ds5c1").mailbox_rules;
   auto sms = good_layout();
   sms[0].start = 0x1100;
   sms[0].length = 32;
@@ -92,7 +90,7 @@ TEST(FirmwareMailboxSmCheck, Ds5c1StartWindows) {
 }
 
 TEST(FirmwareMailboxSmCheck, OddStartIsRejected) {
-  const auto rules = a6b_product().mailbox_rules;
+  const auto rules = product("a6b").mailbox_rules;
   auto sms = good_layout();
   sms[0].start = 0x1001;
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Sm0OddStart);
@@ -103,7 +101,7 @@ TEST(FirmwareMailboxSmCheck, OddStartIsRejected) {
 
 TEST(FirmwareMailboxSmCheck, A6bControlLowNibbleMustBeMailboxWriteAndRead) {
   // 0804h bits 3-0 = 0110b, 080Ch bits 3-0 = 0010b; upper bits (IRQ enables) are free.
-  const auto rules = a6b_product().mailbox_rules;
+  const auto rules = product("a6b").mailbox_rules;
   auto sms = good_layout();
   sms[0].control = 0x06;  // no PDI IRQ bit: still a valid write mailbox for the A6B
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Ok);
@@ -117,7 +115,7 @@ TEST(FirmwareMailboxSmCheck, A6bControlLowNibbleMustBeMailboxWriteAndRead) {
 }
 
 TEST(FirmwareMailboxSmCheck, Ds5c1ControlBits5to0AreChecked) {
-  const auto rules = ds5c1_product().mailbox_rules;
+  const auto rules = product("ds5c1").mailbox_rules;
   auto sms = good_layout();
   sms[0].control = 0x06;  // bit5 (AL event enable) missing: E-811 checks bits 5-0 (L7125)
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Sm0Control);
@@ -127,7 +125,7 @@ TEST(FirmwareMailboxSmCheck, Ds5c1ControlBits5to0AreChecked) {
 }
 
 TEST(FirmwareMailboxSmCheck, Sm0AndSm1MustNotOverlap) {
-  const auto rules = a6b_product().mailbox_rules;
+  const auto rules = product("a6b").mailbox_rules;
   auto sms = good_layout();
   sms[1].start = 0x10FE;  // last two bytes of SM0
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Overlap);
@@ -136,7 +134,7 @@ TEST(FirmwareMailboxSmCheck, Sm0AndSm1MustNotOverlap) {
 }
 
 TEST(FirmwareMailboxSmCheck, EnabledProcessDataSmMustNotOverlapMailboxes) {
-  const auto rules = a6b_product().mailbox_rules;
+  const auto rules = product("a6b").mailbox_rules;
   auto sms = good_layout();
   sms[2].start = 0x1200;  // SM2 on top of SM1
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Overlap);
@@ -147,7 +145,7 @@ TEST(FirmwareMailboxSmCheck, EnabledProcessDataSmMustNotOverlapMailboxes) {
 TEST(FirmwareMailboxSmCheck, BufferedSmOccupiesThreeBuffers) {
   // A 3-buffer SM of 0x40 bytes spans 0xC0 bytes: its third buffer can reach into SM0 even
   // though its first buffer ends well before it.
-  const auto rules = a6b_product().mailbox_rules;
+  const auto rules = product("a6b").mailbox_rules;
   auto sms = good_layout();
   sms[2] = sm(0x0F44, 0x40, 0x64, true);  // 3 x 0x40 = 0xC0 -> ends at 0x1004, inside SM0
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Overlap);
@@ -158,14 +156,14 @@ TEST(FirmwareMailboxSmCheck, BufferedSmOccupiesThreeBuffers) {
 }
 
 TEST(FirmwareMailboxSmCheck, ZeroLengthProcessDataSmOverlapsNothing) {
-  const auto rules = a6b_product().mailbox_rules;
+  const auto rules = product("a6b").mailbox_rules;
   auto sms = good_layout();
   sms[3] = sm(0x1000, 0, 0x20, true);
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Ok);
 }
 
 TEST(FirmwareMailboxSmCheck, AddressSpaceEndDoesNotWrap) {
-  profile::MailboxSmRules rules = a6b_product().mailbox_rules;
+  profile::MailboxSmRules rules = product("a6b").mailbox_rules;
   rules.sm0_start_max = 0xFFFF;
   rules.sm1_start_max = 0xFFFF;
   auto sms = good_layout();
@@ -174,11 +172,11 @@ TEST(FirmwareMailboxSmCheck, AddressSpaceEndDoesNotWrap) {
 }
 
 TEST(FirmwareMailboxSmCheck, BootRulesCapLengthsAtTheBootMailboxSize) {
-  const auto product = ds1000a_product();  // boot mailboxes 128 bytes
-  const auto boot = boot_mailbox_rules(product);
+  const profile::ProductProfile& ds1000a = product("ds1000a");  // boot mailboxes 128 bytes
+  const auto boot = boot_mailbox_rules(ds1000a);
   EXPECT_EQ(boot.sm0_max_length, 128);
   EXPECT_EQ(boot.sm1_max_length, 128);
-  EXPECT_EQ(boot.sm0_min_length, product.mailbox_rules.sm0_min_length);
+  EXPECT_EQ(boot.sm0_min_length, ds1000a.mailbox_rules.sm0_min_length);
   std::array<SmChannel, 4> sms = {sm(0x1000, 128, 0x26, true), sm(0x1080, 128, 0x22, true),
                                   sm(0x1100, 0, 0x64, false), sm(0x1180, 0, 0x20, false)};
   EXPECT_EQ(check(sms, boot), MailboxSmFault::Ok);
@@ -187,15 +185,14 @@ TEST(FirmwareMailboxSmCheck, BootRulesCapLengthsAtTheBootMailboxSize) {
 }
 
 TEST(FirmwareMailboxSmCheck, BootRulesWithoutBootMailboxAreTheStandardRules) {
-  const auto product = ds5c1_product();
-  const auto boot = boot_mailbox_rules(product);
+  const auto boot = boot_mailbox_rules(product("ds5c1"));
   EXPECT_EQ(boot.sm0_max_length, 256);
   EXPECT_EQ(boot.sm1_min_length, 40);
 }
 
 TEST(FirmwareMailboxSmCheck, FewerThanTwoSmsIsNeverValid) {
   const std::array<SmChannel, 1> one = {sm(0x1000, 256, 0x26, true)};
-  EXPECT_NE(check_mailbox_sms(one, a6b_product().mailbox_rules), MailboxSmFault::Ok);
+  EXPECT_NE(check_mailbox_sms(one, product("a6b").mailbox_rules), MailboxSmFault::Ok);
 }
 
 TEST(FirmwareMailboxSmCheck, EveryFaultHasADescription) {

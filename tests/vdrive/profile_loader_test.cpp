@@ -8,7 +8,6 @@
 #include <map>
 #include <string>
 
-#include "tests/vdrive/firmware_test_products.hpp"
 #include "vdrive/profile/embedded_profiles.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
@@ -285,43 +284,16 @@ TEST(ProfileLoader, BootstrapNeedsABootMailbox) {
   EXPECT_NE(msg.find("has_bootstrap: is true but mailbox has no boot_* mailbox"), std::string::npos) << msg;
 }
 
-// The firmware tests build the products in code; they must say what the YAML says.
-TEST(ProfileLoader, FirmwareTestProductsAgreeWithTheYaml) {
-  const std::pair<std::string, ProductProfile> in_code[] = {
-      {"a6b", test::a6b_product()}, {"ds5c1", test::ds5c1_product()}, {"ds1000a", test::ds1000a_product()}};
-  for (const auto& [id, c] : in_code) {
-    SCOPED_TRACE(id);
-    const ProductProfile y = load_profile(id);
-    EXPECT_EQ(y.mailbox.rx_offset, c.mailbox.rx_offset);
-    EXPECT_EQ(y.mailbox.rx_size, c.mailbox.rx_size);
-    EXPECT_EQ(y.mailbox.tx_offset, c.mailbox.tx_offset);
-    EXPECT_EQ(y.mailbox.tx_size, c.mailbox.tx_size);
-    EXPECT_EQ(y.mailbox.boot_rx_offset, c.mailbox.boot_rx_offset);
-    EXPECT_EQ(y.mailbox.boot_tx_size, c.mailbox.boot_tx_size);
-    EXPECT_EQ(y.mailbox.protocols, c.mailbox.protocols);
-    const MailboxSmRules& a = y.mailbox_rules;
-    const MailboxSmRules& b = c.mailbox_rules;
-    EXPECT_EQ(a.sm0_min_length, b.sm0_min_length);
-    EXPECT_EQ(a.sm0_max_length, b.sm0_max_length);
-    EXPECT_EQ(a.sm1_min_length, b.sm1_min_length);
-    EXPECT_EQ(a.sm1_max_length, b.sm1_max_length);
-    EXPECT_EQ(a.sm0_start_min, b.sm0_start_min);
-    EXPECT_EQ(a.sm0_start_max, b.sm0_start_max);
-    EXPECT_EQ(a.sm1_start_min, b.sm1_start_min);
-    EXPECT_EQ(a.sm1_start_max, b.sm1_start_max);
-    EXPECT_EQ(a.sm0_control_mask, b.sm0_control_mask);
-    EXPECT_EQ(a.sm0_control_value, b.sm0_control_value);
-    EXPECT_EQ(a.sm1_control_mask, b.sm1_control_mask);
-    EXPECT_EQ(a.sm1_control_value, b.sm1_control_value);
-    EXPECT_EQ(a.require_even_start, b.require_even_start);
-    EXPECT_EQ(y.has_bootstrap, c.has_bootstrap);
-    EXPECT_EQ(y.explicit_device_id, c.explicit_device_id);
-    EXPECT_EQ(y.al_codes.invalid_transition, c.al_codes.invalid_transition);
-    EXPECT_EQ(y.al_codes.unknown_state, c.al_codes.unknown_state);
-    EXPECT_EQ(y.al_codes.bootstrap_not_supported, c.al_codes.bootstrap_not_supported);
-    EXPECT_EQ(y.al_codes.invalid_mailbox_config, c.al_codes.invalid_mailbox_config);
-    EXPECT_EQ(y.al_codes.invalid_boot_mailbox_config, c.al_codes.invalid_boot_mailbox_config);
-  }
+TEST(ProfileLoader, CompleteAccessAbortIsRequiredAndAnSdoAbortCode) {
+  std::string file;
+  std::string text = replace_once(embedded_text("a6b"), "complete_access_abort: 0x06010000\n", "");
+  std::string msg = load_error("a6b", text, &file);
+  EXPECT_EQ(msg.rfind(file + ":", 0), 0u) << msg;
+  EXPECT_NE(msg.find(": complete_access_abort: missing"), std::string::npos) << msg;
+  text = replace_once(embedded_text("ds5c1"), "complete_access_abort: 0x06010004", "complete_access_abort: 0x1234");
+  msg = load_error("ds5c1", text, &file);
+  EXPECT_EQ(msg, file + ":" + std::to_string(line_of(text, "complete_access_abort: 0x1234")) +
+                     ": complete_access_abort: expected an SDO abort code (0x05xxxxxx-0x08xxxxxx)");
 }
 
 }  // namespace

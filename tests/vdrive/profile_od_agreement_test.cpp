@@ -59,6 +59,28 @@ TEST_P(ProfileOdAgreement, HomingListLength) {
   EXPECT_EQ(list->max_subindex(), profile_.homing.listed.size());
 }
 
+// The objects and subindexes sync: names (threshold and miss-count objects, counter subindexes,
+// 20h when sync_error_flag) exist in the dictionary.
+TEST_P(ProfileOdAgreement, SyncObjectsExist) {
+  const SyncSpec& s = profile_.sync;
+  if (s.missed_sync_threshold_object != 0) {
+    EXPECT_NE(dict_->find(s.missed_sync_threshold_object, 0), nullptr) << std::hex << s.missed_sync_threshold_object;
+  }
+  if (s.sync_error_count_object != 0) {
+    EXPECT_NE(dict_->find(s.sync_error_count_object, 0), nullptr) << std::hex << s.sync_error_count_object;
+  }
+  for (const std::uint16_t index : {0x1C32, 0x1C33}) {
+    for (const std::uint8_t sub : {s.sm_event_missed_subindex, s.cycle_too_small_subindex}) {
+      if (sub != 0) {
+        EXPECT_NE(dict_->find(index, sub), nullptr) << std::hex << index << ":" << int(sub);
+      }
+    }
+    if (s.sync_error_flag) {
+      EXPECT_NE(dict_->find(index, 0x20), nullptr) << std::hex << index;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Products, ProfileOdAgreement, ::testing::Values("a6b", "ds5c1", "ds1000a"));
 
 // The DS1000-EC table gives initial values for everything (L4414-L5228): compare them.

@@ -58,6 +58,14 @@ TEST(ProfileProductData, A6bSync) {
   EXPECT_EQ(s.watchdog.min_free_run_ns, 2000000u);       // L33465
   EXPECT_EQ(s.pll_lock_timeout_ns, 1000000000u);         // Err80.3 (L33067)
   EXPECT_EQ(s.accepted_dc_activation, (std::vector<std::uint8_t>{0x00, 0x03}));  // Err81.5
+  EXPECT_TRUE(s.sync_types_follow_dc_activation);        // 1C32h/1C33h-01h from 0981h (L7750-L7780, L8000-L8030)
+  EXPECT_EQ(s.input_sm2_sync_type, 0x22);                // 1C33h-01h 22h = SM2 (L7998)
+  EXPECT_EQ(s.missed_sync_threshold_object, 0x3742);     // Err80.7 threshold, bits 3-0 (L33248-L33264)
+  EXPECT_EQ(s.sync_error_count_object, 0x4F78);          // L32136-L32142
+  EXPECT_EQ(s.sm_event_missed_subindex, 0);              // not supported (L7922-L7923)
+  EXPECT_EQ(s.cycle_too_small_subindex, 0);              // not supported (L7917-L7918)
+  EXPECT_FALSE(s.sync_error_flag);                       // 20h not supported (L7937-L7938)
+  EXPECT_EQ(p.complete_access_abort, 0x06010000u);       // abort table has no 06010004h (L4411-L4552)
 }
 
 TEST(ProfileProductData, A6bPdoRulesModesHomingTouchProbe) {
@@ -119,6 +127,12 @@ TEST(ProfileProductData, Ds5c1SyncAndPdoRules) {
   EXPECT_EQ(p.pdo_rules.max_tx_assigned, 4);             // L2352
   EXPECT_EQ(p.pdo_rules.max_rx_bytes, 32);               // 3791+ (L2353)
   EXPECT_EQ(p.pdo_rules.wrong_state_abort, 0x06010003u); // L5587
+  EXPECT_FALSE(p.sync.sync_types_follow_dc_activation);  // not in manual
+  EXPECT_EQ(p.sync.input_sm2_sync_type, 0x01);           // 1C33h-01h 01h = SM2 (L5706-L5707)
+  EXPECT_EQ(p.sync.sm_event_missed_subindex, 0);         // 0Bh-0Eh "不支持" (L5687-L5694)
+  EXPECT_TRUE(p.sync.sync_error_flag);                   // 20h Sync error (L5695)
+  EXPECT_EQ(p.sync.missed_sync_threshold_object, 0);
+  EXPECT_EQ(p.complete_access_abort, 0x06010004u);       // not in manual: ETG.1000.6
 }
 
 TEST(ProfileProductData, Ds5c1ModesHomingTouchProbe) {
@@ -168,6 +182,11 @@ TEST(ProfileProductData, Ds1000aSyncAndPdoRules) {
   EXPECT_EQ(p.sync.sm2.supported_sync_types, 0);         // printed 0 (L4728)
   EXPECT_FALSE(p.sync.sm2.cycle_time_writable);          // 02h ro (L4705)
   EXPECT_TRUE(p.sync.sm2.error_counters);                // 0Bh-0Dh, 20h (L4742-L4753)
+  EXPECT_EQ(p.sync.sm_event_missed_subindex, 0x0B);      // L4742
+  EXPECT_EQ(p.sync.cycle_too_small_subindex, 0x0C);      // L4744
+  EXPECT_TRUE(p.sync.sync_error_flag);                   // L4753
+  EXPECT_EQ(p.sync.input_sm2_sync_type, 0x22);           // not in manual: ETG.1020
+  EXPECT_EQ(p.complete_access_abort, 0x06010004u);       // not in manual: ETG.1000.6
   EXPECT_EQ(p.pdo_rules.rx_objects[2].max_entries, 10);  // 0-10 (L4509)
   EXPECT_EQ(p.pdo_rules.max_rx_assigned, 1);             // 1C12h-00h 0-1 (L4677)
   EXPECT_FALSE(p.pdo_rules.byte_aligned_total);          // 1600h default is 15 bytes (L4453-L4477)

@@ -96,6 +96,61 @@ TEST(ProfileSectionsValidation, DefaultSyncTypeMustBeAccepted) {
                          "sync.sm2.default_sync_type: is not one of accepted_sync_types");
 }
 
+TEST(ProfileSectionsValidation, InputSm2SyncTypeMustBeAnSm2ValueTheProductAccepts) {
+  Texts t = embedded("ds5c1");
+  t.profile = replace_once(t.profile, "input_sm2_sync_type: 0x01 ", "input_sm2_sync_type: 0x22 ");
+  LoadResult r = load("ds5c1", t);
+  EXPECT_EQ(r.error, where(r, "profile.yaml", t.profile, "input_sm2_sync_type: 0x22") +
+                         "sync.input_sm2_sync_type: is not one of sm3.accepted_sync_types");
+  t = embedded("a6b");
+  t.profile = replace_once(t.profile, "input_sm2_sync_type: 0x22 ", "input_sm2_sync_type: 0x02 ");
+  r = load("a6b", t);
+  EXPECT_EQ(r.error, where(r, "profile.yaml", t.profile, "input_sm2_sync_type: 0x02") +
+                         "sync.input_sm2_sync_type: expected 0x01 or 0x22 (the 1C33h-01h value for "
+                         "SM2-synchronous inputs)");
+}
+
+TEST(ProfileSectionsValidation, CounterSubindexesMustBeRealDistinctCounters) {
+  Texts t = embedded("a6b");   // a6b: 0Bh-0Eh not supported (error_counters false)
+  t.profile = replace_once(t.profile, "sm_event_missed_subindex: 0x00 ", "sm_event_missed_subindex: 0x0C ");
+  LoadResult r = load("a6b", t);
+  EXPECT_EQ(r.error, where(r, "profile.yaml", t.profile, "sm_event_missed_subindex: 0x0C") +
+                         "sync.sm_event_missed_subindex: names a counter but sm2/sm3 error_counters is false");
+  t = embedded("ds1000a");
+  t.profile = replace_once(t.profile, "cycle_too_small_subindex: 0x0C ", "cycle_too_small_subindex: 0x20 ");
+  r = load("ds1000a", t);
+  EXPECT_EQ(r.error, where(r, "profile.yaml", t.profile, "cycle_too_small_subindex: 0x20") +
+                         "sync.cycle_too_small_subindex: expected 0 (not counted) or a counter subindex 0x0B-0x0E");
+  t = embedded("ds1000a");
+  t.profile = replace_once(t.profile, "cycle_too_small_subindex: 0x0C ", "cycle_too_small_subindex: 0x0B ");
+  r = load("ds1000a", t);
+  EXPECT_EQ(r.error, where(r, "profile.yaml", t.profile, "cycle_too_small_subindex: 0x0B") +
+                         "sync.cycle_too_small_subindex: is the same subindex as sm_event_missed_subindex");
+}
+
+TEST(ProfileSectionsValidation, ThresholdObjectAndThresholdValueExcludeEachOther) {
+  Texts t = embedded("a6b");
+  t.profile = replace_once(t.profile, "missed_sync_threshold: 0 ", "missed_sync_threshold: 3 ");
+  const LoadResult r = load("a6b", t);
+  EXPECT_EQ(r.error, where(r, "profile.yaml", t.profile, "missed_sync_threshold: 3") +
+                         "sync.missed_sync_threshold: expected 0: missed_sync_threshold_object holds the threshold");
+}
+
+TEST(ProfileSectionsValidation, SyncBehaviourKeysAreRequired) {
+  for (const char* key : {"missed_sync_threshold_object", "sync_error_count_object", "sync_types_follow_dc_activation",
+                          "input_sm2_sync_type", "sm_event_missed_subindex", "cycle_too_small_subindex",
+                          "sync_error_flag"}) {
+    Texts t = embedded("ds5c1");
+    const auto pos = t.profile.find(std::string("\n  ") + key + ":");
+    ASSERT_NE(pos, std::string::npos) << key;
+    t.profile.erase(pos, t.profile.find('\n', pos + 1) - pos);
+    const LoadResult r = load("ds5c1", t);
+    // A missing field points at the line of its mapping's key.
+    const int sync_line = line_of(t.profile, "\nsync:") + 1;
+    EXPECT_EQ(r.error, r.dir + "/profile.yaml:" + std::to_string(sync_line) + ": sync." + key + ": missing");
+  }
+}
+
 TEST(ProfileSectionsValidation, CycleStepRangeMustBeMultiples) {
   Texts t = embedded("ds1000a");
   t.profile = replace_once(t.profile, "cycle_min_ns: 1000000 ", "cycle_min_ns: 1500000 ");

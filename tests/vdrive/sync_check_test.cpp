@@ -49,6 +49,23 @@ TEST(SyncCheck, A6bRefusesSync0CycleDifferentFrom1C32Cycle) {
   EXPECT_TRUE(a6b.check(sm2(2000000, 1, 0x22)).result.ok());
 }
 
+// The rewrite and the SM2-input value are profile data (sync.sync_types_follow_dc_activation,
+// sync.input_sm2_sync_type), not tied to a product.
+TEST(SyncCheck, RewriteAndInputSm2TypeComeFromTheProfile) {
+  profile::ProductProfile p = profile::load_profile("ds1000a");
+  SyncSettings s = rewrite_from_dc_activation(rules_for(p), dc(1000000, 1000000, 0x00, 0x22));
+  EXPECT_EQ(s.output_sync_type, 0x00);   // ds1000a: sync_types_follow_dc_activation false
+  EXPECT_EQ(s.input_sync_type, 0x22);
+  p.sync.sync_types_follow_dc_activation = true;
+  s = rewrite_from_dc_activation(rules_for(p), dc(1000000, 1000000, 0x00, 0x22));
+  EXPECT_EQ(s.output_sync_type, 0x02);
+  EXPECT_EQ(s.input_sync_type, 0x02);
+  p.sync.input_sm2_sync_type = 0x01;
+  p.sync.sm3.accepted_sync_types = {0x00, 0x01, 0x02};
+  EXPECT_TRUE(check_sync_settings(rules_for(p), p.al_codes, sm2(0, 0x01, 0x01)).result.ok());
+  EXPECT_EQ(check_sync_settings(rules_for(p), p.al_codes, sm2(0, 0x01, 0x00)).result.code, 0x0028);
+}
+
 TEST(SyncCheck, A6bRewritesSyncTypesFromDcActivation) {
   const Product a6b("a6b");
   // DC on: 00h/01h -> 02h (1C33h 22h -> 02h).

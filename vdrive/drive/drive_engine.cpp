@@ -113,6 +113,7 @@ void DriveEngine::power_on(Nanos now) {
   pds_.power_on();
   selector_.power_on();
   alarms_.power_on();
+  monitors_.power_on();
   io_.power_on();
   probe_.power_on();
   if (homing_) {
@@ -141,6 +142,9 @@ void DriveEngine::esm_changed(firmware::AlState from, firmware::AlState to, Nano
   if (to == AlState::Init) probe_.cancel();
   if (from == AlState::Init && to == AlState::PreOp) {
     if (homing_) homing_->clear_attained();
+    // The reference is gone with homing attained: 607Dh after-homing limits wait for the next
+    // homing run (A6B incremental, L13156).
+    homed_ = false;
     latch_units();
   }
   if (from == AlState::PreOp && to == AlState::SafeOp) latch_units();  // startup SDOs are written by now
@@ -223,12 +227,13 @@ void DriveEngine::command(const Setpoint& sp, const plant::AxisFeedback& fb, dou
     if (!powered_) loop_->reset(fb);
     const Setpoint limited = limits_.apply(sp, sample_, homing_ && homing_->running(), homed_);
     const double zero = zero_rad_ - units_.position_to_motor(offset_user_);
-    const MotorSetpoint m =
-        to_motor_setpoint(limited, units_, axis_spec_.motor.rated_torque_nm, zero, limits_.torque_limit());
+    const MotorSetpoint m = to_motor_setpoint(limited, units_, axis_spec_.motor.rated_torque_nm, zero,
+                                              limits_.torque_limit_forward(), limits_.torque_limit_reverse());
     cmd = loop_->step(m, fb, dt);
     const double limit_nm = m.torque_limit_nm > 0 ? m.torque_limit_nm : axis_spec_.motor.peak_torque_nm;
+    const double reverse_nm = m.torque_limit_reverse_nm > 0 ? m.torque_limit_reverse_nm : limit_nm;
     limits_.note_torque_saturated(!cmd.stepper_open_loop && limit_nm > 0 &&
-                                  std::abs(cmd.torque_nm) >= limit_nm * 0.999);
+                                  (cmd.torque_nm >= limit_nm * 0.999 || cmd.torque_nm <= -reverse_nm * 0.999));
     last_ = limited;
   } else {
     cmd.torque_nm = 0.0;
@@ -278,6 +283,8 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   mi.motor_speed_rpm = rpm;
   mi.max_motor_speed_rpm = static_cast<double>(obj_.max_motor_speed.get());
   mi.plant_faults = fb.faults;
+  mi.torque_ratio = axis_spec_.motor.rated_torque_nm > 0 ? fb.torque_nm / axis_spec_.motor.rated_torque_nm : 0.0;
+  mi.dt_s = sample_.dt_s;
   // Position deviation exists only while the position loop runs (pp, hm, ip, csp).
   mi.enabled = pds_.state() == PdsState::OperationEnabled && pds_.power_stage_on() &&
                last_.kind == Setpoint::Kind::Position && was_enabled_;
@@ -336,6 +343,7 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   was_enabled_ = motion;
 
   command(sp, fb, sample_.dt_s);
+  if (motion && limits_.soft_limited()) active_->stopped_by_limit(last_);
 
   // Touch probe on the inputs of this step.
   probe_.step(previous_inputs_ | (torque_off ? din::torque_off : 0u),

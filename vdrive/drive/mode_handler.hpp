@@ -34,6 +34,11 @@ public:
   // Bits 10, 12, 13 of 6041h (sw::mode_bits) after the last step()/idle().
   virtual std::uint16_t status_bits() const = 0;
 
+  // A software position limit changed this step's set-point (MotionLimits): `applied` is what the
+  // axis was commanded. A mode that plans its own trajectory continues from there instead of from
+  // the demand it asked for, which the axis never took.
+  virtual void stopped_by_limit(const Setpoint& /*applied*/) {}
+
   // Homing: true once when home was found in this step; `position` (current user frame) is where
   // the reference point is, the engine re-references so that it reads 607Ch.
   virtual bool take_home_found(double& /*position*/) { return false; }

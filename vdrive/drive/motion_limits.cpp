@@ -3,11 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vdrive/drive/motion_ramp.hpp"
+
 namespace vdrive::drive {
 
 MotionLimits::MotionLimits(const DriveContext& ctx)
     : ctx_(ctx), min_(ctx.objects, 0x607D, 1), max_(ctx.objects, 0x607D, 2), max_torque_(ctx.objects, 0x6072),
-      positive_torque_(ctx.objects, 0x60E0), negative_torque_(ctx.objects, 0x60E1) {
+      positive_torque_(ctx.objects, 0x60E0), negative_torque_(ctx.objects, 0x60E1), selection_(ctx.objects, 0x3521),
+      quick_stop_dec_(ctx.objects, 0x6085),
+      // How a software limit stops a move is not a profile key (drive.soft_limits says when they
+      // act): the A6B ramps down by 6085h from the limit (L13212-L13218), the others stop at it.
+      soft_limit_ramps_(ctx.profile.id == "a6b") {
   const auto& motors = ctx.profile.motors;
   if (!motors.empty() && motors.front().rated_torque_nm > 0.0 && motors.front().peak_torque_nm > 0.0)
     peak_permille_ = 1000.0 * motors.front().peak_torque_nm / motors.front().rated_torque_nm;
@@ -31,14 +37,27 @@ Setpoint MotionLimits::apply(const Setpoint& in, const AxisSample& s, bool homin
   // product that ships 0 there has it filled at power-on by the engine.
   double limit = peak_permille_;
   if (max_torque_.present() && max_torque_.get() > 0) limit = std::min(limit, double(max_torque_.get()));
-  for (const auto* ref : {&positive_torque_, &negative_torque_})
-    if (ref->present() && ref->get() > 0) limit = std::min(limit, double(ref->get()));
   if (ctx_.profile.drive.torque_clamp_permille > 0.0) limit = std::min(limit, ctx_.profile.drive.torque_clamp_permille);
   if (sp.torque_limit > 0.0) limit = std::min(limit, sp.torque_limit);
-  torque_limit_ = limit;
-  if (sp.kind == Setpoint::Kind::Torque && std::abs(sp.torque) > limit) {
-    sp.torque = std::copysign(limit, sp.torque);
-    internal_limit_ = true;
+  // 60E0h limits the positive torque only and 60E1h the negative torque only (A6B L12910-L12926,
+  // DS5C1 P3-28/P3-29 forward/reverse L1691, DS1000A-EC CW/CCW side L3870-L3874); taking the
+  // smaller of the two for both directions capped one direction by the other's limit. Both are
+  // motor-side: 607Eh does not act on them (A6B L28993-L29003 lists the commands it acts on).
+  // The A6B applies them only with 3521h = 5 (L12916, L12926).
+  const bool directional = !selection_.present() || selection_.get() == 5;
+  torque_forward_ = torque_reverse_ = limit;
+  if (directional && positive_torque_.present() && positive_torque_.get() > 0)
+    torque_forward_ = std::min(torque_forward_, double(positive_torque_.get()));
+  if (directional && negative_torque_.present() && negative_torque_.get() > 0)
+    torque_reverse_ = std::min(torque_reverse_, double(negative_torque_.get()));
+  if (sp.kind == Setpoint::Kind::Torque) {
+    const double sign = ctx_.units.torque_sign();  // user torque -> motor torque
+    const double motor = sign * sp.torque;
+    const double clamped = std::clamp(motor, -torque_reverse_, torque_forward_);
+    if (clamped != motor) {
+      sp.torque = sign * clamped;
+      internal_limit_ = true;
+    }
   }
 
   // Direction the set-point asks for.
@@ -70,16 +89,42 @@ Setpoint MotionLimits::apply(const Setpoint& in, const AxisSample& s, bool homin
     if (pos_switch || neg_switch) internal_limit_ = true;
   }
 
-  // Software position limits: position demands are clamped into [min, max]; outside the range
-  // only motion back toward it is allowed (A6B L13055-L13250, DS1000A-EC L1387-L1414).
-  if (!homing && soft_limits_active(s, homed)) {
+  // Software position limits act on position control only: pp, ip, csp (A6B L13145; DS1000A-EC
+  // "position control settings" 7.3, L1293/L1387). Velocity and torque set-points used to be
+  // blocked at the limits too. Outside the range only motion back toward it is allowed, and bit 11
+  // shows it until the axis is back inside (A6B L13161-L13167, DS1000A-EC L1402). A demand that
+  // would pass a limit stops as the product does:
+  //  - A6B: decelerating by the quick-stop ramp 6085h from where the limit is detected
+  //    (L13212-L13218), so it stands beyond the limit by v^2 / (2 * 6085h);
+  //  - DS1000A-EC: at the limit ("stops within the range", L1400).
+  soft_limited_ = false;
+  if (!homing && sp.kind == Setpoint::Kind::Position && soft_limits_active(s, homed)) {
     const double lo = min_.get(), hi = max_.get();
-    if (sp.kind == Setpoint::Kind::Position) {
-      if (sp.position > hi && direction > 0.0) { sp.position = std::max(hi, s.position_demand); sp.velocity = 0.0; internal_limit_ = true; }
-      if (sp.position < lo && direction < 0.0) { sp.position = std::min(lo, s.position_demand); sp.velocity = 0.0; internal_limit_ = true; }
-    } else if ((s.position >= hi && direction > 0.0) || (s.position <= lo && direction < 0.0)) {
-      block(sp);
+    const bool past_hi = sp.position > hi && direction > 0.0;
+    const bool past_lo = sp.position < lo && direction < 0.0;
+    if (past_hi || past_lo) {
+      soft_limited_ = true;
+      const double toward = past_hi ? 1.0 : -1.0;
+      // 606Bh is the last step's mean speed: while the axis took the ramp's last set-point,
+      // continue from the ramp's own end speed (else the ramp ran at half the rate).
+      MotionState from{s.position_demand, s.velocity_demand};
+      if (soft_ramping_ && soft_ramp_.position == s.position_demand) from.velocity = soft_ramp_.velocity;
+      if (soft_limit_ramps_ && from.velocity * toward > 0.0) {
+        const double dec = quick_stop_dec_.get() == 0 ? 1.0 : static_cast<double>(quick_stop_dec_.get());
+        const MotionState next = ramp_velocity(from, 0.0, dec, dec, s.dt_s);
+        sp.position = next.position;
+        sp.velocity = next.velocity;
+        soft_ramp_ = next;
+        soft_ramping_ = true;
+      } else if (soft_limit_ramps_) {
+        sp.position = s.position_demand;  // stood: hold, no motion further out
+        sp.velocity = 0.0;
+      } else {
+        sp.position = past_hi ? std::max(hi, s.position_demand) : std::min(lo, s.position_demand);
+        sp.velocity = 0.0;
+      }
     }
+    if (soft_limited_ || s.position > hi || s.position < lo) internal_limit_ = true;
   }
   return sp;
 }

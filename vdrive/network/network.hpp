@@ -48,7 +48,13 @@ public:
 
   // One Ethernet frame from the master, processed in place; `now` is its arrival time. Returns
   // true if the frame comes back (send it to the master), false if the line destroyed it.
+  // forward_frame() passes it through the ESCs only, as the silicon does while it is on the wire;
+  // the firmware reacts afterwards in service_irqs(), so the event loop sends the frame back first
+  // and a slow firmware task (a flash write) never delays it. process_frame() does both.
   bool process_frame(std::span<std::uint8_t> ethernet_frame, Nanos now);
+  bool forward_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) { return segment_.process(ethernet_frame, now); }
+  // Runs the firmware of every slave whose PDI interrupt is asserted.
+  void service_irqs(Nanos now);
   // Runs every ESC and firmware timer due at `now`, and firmware IRQs they raise.
   void tick(Nanos now);
   // Earliest time tick() has work to do, or INT64_MAX.
@@ -69,7 +75,6 @@ private:
     std::unique_ptr<esc::Esc> esc;
     std::unique_ptr<firmware::SlaveFirmware> firmware;
   };
-  void service_irqs(Nanos now);
 
   std::vector<std::unique_ptr<Slave>> slaves_;  // stable addresses for the references above
   Segment segment_;

@@ -73,6 +73,10 @@ DriveLevelSpec read_levels(YamlMapReader m) {
     m.fail("following_error_in_revolutions", "the level has one unit: increments or revolutions, not both");
   l.overspeed_rpm = read_parameter(m, "overspeed_rpm");
   l.overspeed_reverse_rpm = read_parameter(m, "overspeed_reverse_rpm");
+  l.overload = read_parameter(m, "overload");
+  l.overload_time_constant_s = m.real("overload_time_constant_s");
+  if (l.overload.fallback > 0.0 && !(l.overload_time_constant_s > 0.0))
+    m.fail("overload_time_constant_s", "expected a time constant > 0 s when the overload is supervised");
   m.finish();
   return l;
 }

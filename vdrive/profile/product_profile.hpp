@@ -129,7 +129,7 @@ struct SyncObjectSpec {
   std::uint32_t min_cycle_time_ns = 0;                // 05h
   std::uint32_t calc_and_copy_time_ns = 0;            // 06h
   std::uint32_t delay_time_ns = 0;                    // 09h
-  bool error_counters = false;                        // 0Bh-0Eh and 20h are real counters (else read 0)
+  bool error_counters = false;                        // 0Bh-0Eh are real counters (else read 0); SyncSpec says which counts what
 };
 
 // Shift-time rule for 1C33h-03h (input latch after SYNC0/SM2) or 1C32h-03h. max_ns = 0: only 0 is
@@ -176,6 +176,20 @@ struct SyncSpec {
   WatchdogRule watchdog;
   std::uint32_t pll_lock_timeout_ns = 0;              // sync must lock within this after PS (0 = not stated)
   std::uint8_t missed_sync_threshold = 0;             // consecutive SYNC0/IRQ misses before a sync error (0 = never)
+  // Where the product keeps that threshold instead: bits 3-0 of this object's subindex 0 (A6B 3742h);
+  // 0 = missed_sync_threshold applies.
+  std::uint16_t missed_sync_threshold_object = 0;
+  // Object (subindex 0) counting SYNC0/IRQ misses (A6B 4F78h); 0 = none.
+  std::uint16_t sync_error_count_object = 0;
+  // At PreOp->SafeOp 1C32h-01h/1C33h-01h are rewritten from 0981h: DC on -> DC SYNC0; DC off -> a
+  // DC SYNC0 setting becomes free run (A6B L7750-L7780).
+  bool sync_types_follow_dc_activation = false;
+  // The 1C33h-01h value for "inputs synchronous with the SM2 event": 22h (ETG.1020), 01h on the DS5C1.
+  std::uint16_t input_sm2_sync_type = 0x22;
+  // 1C32h/1C33h subindexes counting missed SM2/SYNC0 events and too-short cycles (0 = not counted).
+  std::uint8_t sm_event_missed_subindex = 0;
+  std::uint8_t cycle_too_small_subindex = 0;
+  bool sync_error_flag = false;                       // 1C32h/1C33h-20h is set on lost sync
 
   // True when `ns` is a cycle time the product accepts in SM2/DC mode (1C32h-02h / 09A0h).
   bool accepts_cycle(std::uint32_t ns) const {
@@ -364,6 +378,8 @@ struct DriveLevelSpec {
   bool following_error_in_revolutions = false;        // level in motor revolutions (DS5C1 P0-23, 0.01 rev)
   ParameterRef overspeed_rpm;                         // overspeed alarm level, r/min (0 / none: overspeed_factor * 6080h)
   ParameterRef overspeed_reverse_rpm;                 // reverse-direction level where the product has one (DS5C1 P3-22); none: overspeed_rpm
+  ParameterRef overload;                              // servo I^2 t: load factor (1.0 = rated torque, continuous) that trips; 0: not supervised
+  double overload_time_constant_s = 0.0;              // thermal time constant of the load factor
 };
 
 // The DS1000A-EC's closed-loop stepper settings (210Dh-2113h).
@@ -426,6 +442,9 @@ struct ProductProfile {
   // 4 startup upload, 5 complete access), FoE details, ports.
   std::uint8_t coe_details = 0x0F;
   std::uint8_t foe_details = 0;
+  // SDO abort for a complete-access request when coe_details bit5 is clear (A6B 06010000h: its abort
+  // table has no 06010004h; ETG.1000.6 06010004h otherwise).
+  std::uint32_t complete_access_abort = 0x06010004;
   // Default PDO mappings (factory values), in object order. Empty when the manual gives none.
   std::vector<PdoSpec> rx_pdos;
   std::vector<PdoSpec> tx_pdos;

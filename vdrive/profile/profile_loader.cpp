@@ -233,6 +233,9 @@ ProductProfile parse_profile(std::string_view id, const std::string& text, const
   p.explicit_device_id = root.boolean("explicit_device_id");
   p.al_codes = read_al_codes(root.map("al_codes"));
   p.coe_details = root.u8("coe_details");
+  p.complete_access_abort = root.u32("complete_access_abort");
+  if (p.complete_access_abort < 0x05000000 || p.complete_access_abort > 0x08FFFFFF)
+    root.fail("complete_access_abort", "expected an SDO abort code (0x05xxxxxx-0x08xxxxxx)");
   p.foe_details = root.u8("foe_details");
   p.rx_pdos = read_pdos(root, "rx_pdos", 0x1600);
   p.tx_pdos = read_pdos(root, "tx_pdos", 0x1A00);

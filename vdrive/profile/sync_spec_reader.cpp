@@ -47,6 +47,17 @@ ShiftTimeRule read_shift(YamlMapReader m) {
   return r;
 }
 
+// A 1C32h/1C33h counter subindex: 0 (not counted) or one of the ETG.1020 counters 0Bh-0Eh, which
+// the objects must then have as real counters.
+std::uint8_t read_counter_subindex(YamlMapReader& m, std::string_view key, const SyncSpec& s) {
+  const std::uint8_t sub = m.u8(key);
+  if (sub == 0) return sub;
+  if (sub < 0x0B || sub > 0x0E) m.fail(key, "expected 0 (not counted) or a counter subindex 0x0B-0x0E");
+  if (!s.sm2.error_counters || !s.sm3.error_counters)
+    m.fail(key, "names a counter but sm2/sm3 error_counters is false");
+  return sub;
+}
+
 }  // namespace
 
 SyncSpec read_sync(YamlMapReader m) {
@@ -115,6 +126,23 @@ SyncSpec read_sync(YamlMapReader m) {
 
   s.pll_lock_timeout_ns = m.u32("pll_lock_timeout_ns");
   s.missed_sync_threshold = m.u8("missed_sync_threshold");
+  s.missed_sync_threshold_object = m.u16("missed_sync_threshold_object");
+  if (s.missed_sync_threshold_object != 0 && s.missed_sync_threshold != 0)
+    m.fail("missed_sync_threshold", "expected 0: missed_sync_threshold_object holds the threshold");
+  s.sync_error_count_object = m.u16("sync_error_count_object");
+
+  s.sync_types_follow_dc_activation = m.boolean("sync_types_follow_dc_activation");
+  s.input_sm2_sync_type = m.u16("input_sm2_sync_type");
+  if (s.input_sm2_sync_type != 0x01 && s.input_sm2_sync_type != 0x22)
+    m.fail("input_sm2_sync_type", "expected 0x01 or 0x22 (the 1C33h-01h value for SM2-synchronous inputs)");
+  if (s.sm2_event && std::find(s.sm3.accepted_sync_types.begin(), s.sm3.accepted_sync_types.end(),
+                               s.input_sm2_sync_type) == s.sm3.accepted_sync_types.end())
+    m.fail("input_sm2_sync_type", "is not one of sm3.accepted_sync_types");
+  s.sm_event_missed_subindex = read_counter_subindex(m, "sm_event_missed_subindex", s);
+  s.cycle_too_small_subindex = read_counter_subindex(m, "cycle_too_small_subindex", s);
+  if (s.sm_event_missed_subindex != 0 && s.sm_event_missed_subindex == s.cycle_too_small_subindex)
+    m.fail("cycle_too_small_subindex", "is the same subindex as sm_event_missed_subindex");
+  s.sync_error_flag = m.boolean("sync_error_flag");
   m.finish();
   return s;
 }

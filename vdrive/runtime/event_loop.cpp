@@ -25,15 +25,16 @@ void bump(std::atomic<std::uint64_t>& counter) {
 void handle_frame(network::Network& network, link::Link& link, std::span<std::uint8_t> frame,
                   Nanos now, LoopCounters& counters) {
   bump(counters.frames_in);
-  if (!network.process_frame(frame, now)) {
+  // The frame goes back before the firmware reacts to it (architecture.md).
+  if (!network.forward_frame(frame, now)) {
     bump(counters.dropped);
-    return;
-  }
-  if (link.send(frame)) {
+  } else if (link.send(frame)) {
     bump(counters.frames_out);
   } else {
     bump(counters.send_failed);
   }
+  // Even a destroyed frame may have changed ESC state before its error was found.
+  network.service_irqs(now);
 }
 
 }  // namespace

@@ -8,7 +8,8 @@ namespace vdrive::drive {
 
 AlarmMonitors::AlarmMonitors(const DriveContext& ctx, AlarmManager& alarms)
     : ctx_(ctx), alarms_(alarms), following_error_level_(ctx.objects, ctx.profile.drive.levels.following_error),
-      overspeed_level_(ctx.objects, ctx.profile.drive.levels.overspeed_rpm) {
+      overspeed_level_(ctx.objects, ctx.profile.drive.levels.overspeed_rpm),
+      overload_level_(ctx.objects, ctx.profile.drive.levels.overload) {
   const profile::DriveAlarmCauses& causes = ctx.profile.drive.alarms;
   // "" or a code missing from the table: the product has no alarm for it (nullptr, never raised).
   following_error_ = causes.following_error.empty() ? nullptr : alarms.find(causes.following_error);
@@ -36,7 +37,13 @@ void AlarmMonitors::step(const MonitorInputs& in) {
   watch(overspeed_, too_fast || (in.plant_faults & plant::fault::overspeed) != 0, in.now);
 
   watch(overtemperature_, (in.plant_faults & plant::fault::overtemperature) != 0, in.now);
-  watch(overload_, (in.plant_faults & plant::fault::lost_steps) != 0, in.now);
+
+  const double tau = levels.overload_time_constant_s;
+  if (tau > 0.0 && in.dt_s > 0.0)
+    load_factor_ += (in.torque_ratio * in.torque_ratio - load_factor_) * (1.0 - std::exp(-in.dt_s / tau));
+  const double overload_level = overload_level_.get();
+  const bool overloaded = overload_level > 0.0 && load_factor_ > overload_level;
+  watch(overload_, overloaded || (in.plant_faults & plant::fault::lost_steps) != 0, in.now);
 }
 
 void AlarmMonitors::watch(const profile::AlarmSpec* alarm, bool cause, Nanos now) {

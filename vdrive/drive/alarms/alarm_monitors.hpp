@@ -10,7 +10,8 @@
 //    plant reports overspeed;
 //  - overtemperature: the plant reports winding overtemperature;
 //  - overload: the plant reports a stepper that lost steps (DS1000A-EC loop error "overload / speed
-//    not following", L4324-L4334). A servo I^2t overload model is not part of this.
+//    not following", L4324-L4334); for servos an I^2 t load factor, (torque / rated)^2 filtered with
+//    levels.overload_time_constant_s, beyond levels.overload (A6B Err16.0 at 3512h, DS5C1 E-161).
 // Nothing here allocates after construction.
 #include <cstdint>
 
@@ -27,6 +28,8 @@ struct MonitorInputs {
   double following_error_revolutions = 0.0; // the same in motor revolutions
   double motor_speed_rpm = 0.0;
   double max_motor_speed_rpm = 0.0;         // 6080h in r/min
+  double torque_ratio = 0.0;                // actual torque / rated torque
+  double dt_s = 0.0;                        // time since the previous step
   std::uint32_t plant_faults = 0;           // plant::fault:: bits
   bool enabled = false;                     // Operation enabled in a position mode (the position loop runs)
   Nanos now = 0;
@@ -37,18 +40,21 @@ public:
   AlarmMonitors(const DriveContext& ctx, AlarmManager& alarms);
 
   void step(const MonitorInputs& in);
+  void power_on() { load_factor_ = 0.0; }   // a cold motor
 
   // The levels in force (for diagnostics and tests): following error in the level's own unit
   // (increments or user units), overspeed in r/min. 0 = not supervised.
   double following_error_level() const { return following_error_level_.get(); }
   double overspeed_level_rpm(double max_motor_speed_rpm) const;
+  double load_factor() const { return load_factor_; }   // I^2 t state, 1.0 = rated torque continuous
 
 private:
   void watch(const profile::AlarmSpec* alarm, bool cause, Nanos now);
 
   const DriveContext& ctx_;
   AlarmManager& alarms_;
-  ParameterValue following_error_level_, overspeed_level_;
+  ParameterValue following_error_level_, overspeed_level_, overload_level_;
+  double load_factor_ = 0.0;
   const profile::AlarmSpec* following_error_ = nullptr;
   const profile::AlarmSpec* overspeed_ = nullptr;
   const profile::AlarmSpec* overload_ = nullptr;

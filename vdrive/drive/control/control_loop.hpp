@@ -15,13 +15,16 @@ namespace vdrive::drive {
 
 // A Setpoint on the motor shaft. angle_rad is in the frame of plant::AxisFeedback::motor_angle_rad.
 // Position: angle demand, velocity_rad_s and torque_nm are feed-forward. Velocity: velocity demand,
-// torque_nm feed-forward. Torque: torque demand. torque_limit_nm <= 0: the motor's peak torque.
+// torque_nm feed-forward. Torque: torque demand. torque_limit_nm <= 0: the motor's peak torque;
+// it limits both directions unless torque_limit_reverse_nm > 0 limits the negative torque
+// (60E0h/60E1h are separate limits per direction).
 struct MotorSetpoint {
   Setpoint::Kind kind = Setpoint::Kind::Position;
   double angle_rad = 0.0;
   double velocity_rad_s = 0.0;
   double torque_nm = 0.0;
   double torque_limit_nm = 0.0;
+  double torque_limit_reverse_nm = 0.0;
 };
 
 class ControlLoop {

@@ -26,6 +26,8 @@ void ServoLoop::reset(const plant::AxisFeedback& fb) {
 
 plant::AxisCommand ServoLoop::step(const MotorSetpoint& sp, const plant::AxisFeedback& fb, double dt) {
   const double limit = sp.torque_limit_nm > 0.0 ? std::min(sp.torque_limit_nm, peak_torque_nm_) : peak_torque_nm_;
+  const double reverse_limit =
+      sp.torque_limit_reverse_nm > 0.0 ? std::min(sp.torque_limit_reverse_nm, peak_torque_nm_) : limit;
   const double kv = gains_.velocity_gain;
   const bool integrating = gains_.velocity_integral_s > 0.0;
 
@@ -57,10 +59,10 @@ plant::AxisCommand ServoLoop::step(const MotorSetpoint& sp, const plant::AxisFee
 
   const double k = gains_.torque_filter_s > 0.0 ? 1.0 - std::exp(-dt / gains_.torque_filter_s) : 1.0;
   filtered_ += (demand - filtered_) * k;
-  torque_ = std::clamp(filtered_, -limit, limit);
-  saturated_ = std::abs(demand) > limit;
+  torque_ = std::clamp(filtered_, -reverse_limit, limit);
+  saturated_ = demand > limit || demand < -reverse_limit;
   // A filter state beyond the limit would only delay leaving it.
-  filtered_ = std::clamp(filtered_, -limit, limit);
+  filtered_ = std::clamp(filtered_, -reverse_limit, limit);
 
   if (sp.kind != Setpoint::Kind::Torque && integrating) {
     const bool winding_up = saturated_ && velocity_error * demand > 0.0;

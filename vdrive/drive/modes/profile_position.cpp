@@ -171,6 +171,14 @@ void ProfilePositionMode::update_status(const AxisSample& s, bool halted) {
   status_ = bits;
 }
 
+void ProfilePositionMode::stopped_by_limit(const Setpoint& applied) {
+  // Without this the trajectory ran on to the target beyond the limit while the axis stood at it:
+  // a later move back waited until that demand had travelled back to the limit.
+  demand_ = {applied.position, applied.velocity};
+  has_exec_ = has_buffer_ = false;
+  replan_ = true;
+}
+
 void ProfilePositionMode::idle(const AxisSample& s, std::uint16_t controlword) {
   demand_ = {s.position, s.velocity};
   has_exec_ = has_buffer_ = false;

@@ -12,6 +12,9 @@
 //   - halt decelerates by 605Dh and resumes on release (A6B L15830-L15861); on the DS1000-EC a
 //     set-point with bit 5 during halt drops the target and holds (L2111-L2117);
 //   - 6086h = 1 gives a sin^2 ramp where the product has one (DS1000A-EC L1831-L1834);
+//   - a software position limit that stops the move ends the executing and buffered set-points; the
+//     demand continues from where the limit held it, so a move back starts at once (A6B
+//     L13161-L13165, DS1000A-EC L1402);
 //   - bit 10 target reached: all set-points done and |6062h - 6064h| <= 6067h for 6068h ms; with halt,
 //     the axis stopped (A6B L14164-L14193); bit 13: |60F4h| > 6065h for 6066h ms (A6B L14279-L14314).
 #include <cstdint>
@@ -34,6 +37,7 @@ public:
   void activate(const AxisSample& s) override;
   Setpoint step(const AxisSample& s, std::uint16_t controlword) override;
   void idle(const AxisSample& s, std::uint16_t controlword) override;
+  void stopped_by_limit(const Setpoint& applied) override;
   std::uint16_t status_bits() const override { return status_; }
 
   // For the engine and tests: a set-point is executing / waiting in the buffer.

@@ -34,6 +34,7 @@ bool StopSequence::stopped(double velocity) const { return std::abs(velocity) <=
 void StopSequence::start(StopKind kind, std::int8_t mode, const AxisSample& s, DriveSideAction drive_side) {
   kind_ = kind;
   action_ = DriveSideAction::None;
+  ramping_ = false;
   position_setpoints_ = !velocity_mode(mode);
   rate_ = 0.0;
   torque_limit_ = 0.0;
@@ -106,7 +107,15 @@ Setpoint StopSequence::step(const AxisSample& s) {
       break;
     }
     case Shape::SpeedRamp: {
-      const MotionState next = ramp_velocity({s.position_demand, s.velocity_demand}, 0.0, rate_, rate_, s.dt_s);
+      // With position set-points 606Bh (s.velocity_demand) is the mean speed of the last step,
+      // half a step's deceleration above the ramp's own end speed: ramping from it every step ran
+      // the stop at half the rate. Continue from the ramp's end speed while the axis took its last
+      // set-point (the demand is where the ramp left it).
+      MotionState from{s.position_demand, s.velocity_demand};
+      if (position_setpoints_ && ramping_ && ramp_.position == s.position_demand) from.velocity = ramp_.velocity;
+      const MotionState next = ramp_velocity(from, 0.0, rate_, rate_, s.dt_s);
+      ramp_ = next;
+      ramping_ = true;
       sp.kind = position_setpoints_ ? Setpoint::Kind::Position : Setpoint::Kind::Velocity;
       sp.position = next.position;
       sp.velocity = next.velocity;

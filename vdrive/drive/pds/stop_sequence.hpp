@@ -15,6 +15,7 @@
 
 #include "vdrive/drive/drive_context.hpp"
 #include "vdrive/drive/drive_types.hpp"
+#include "vdrive/drive/motion_ramp.hpp"
 #include "vdrive/drive/object_ref.hpp"
 #include "vdrive/drive/pds/stop_kind.hpp"
 #include "vdrive/drive/pds/vendor_stop.hpp"
@@ -52,6 +53,8 @@ private:
   bool position_setpoints_ = true;
   double rate_ = 0.0;
   double torque_limit_ = 0.0;
+  MotionState ramp_{};       // where the speed ramp left the demand (position set-points)
+  bool ramping_ = false;
 };
 
 }  // namespace vdrive::drive

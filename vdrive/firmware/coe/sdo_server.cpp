@@ -27,9 +27,7 @@ std::size_t largest_object(const od::Dictionary& dict) {
 }  // namespace
 
 od::SdoAbort complete_access_refusal(const profile::ProductProfile& profile) {
-  // The A6B's abort table (L4411-L4552) has no 06010004h; its "unsupported access" is 06010000h.
-  if (profile.id == "a6b") return od::SdoAbort::UnsupportedAccess;
-  return od::SdoAbort::CompleteAccessUnsupported;
+  return static_cast<od::SdoAbort>(profile.complete_access_abort);
 }
 
 SdoServer::SdoServer(const profile::ProductProfile& profile, od::ObjectStore& objects,

@@ -7,8 +7,8 @@
 //    transfer. A segment with no transfer in progress, or an unknown command specifier, aborts
 //    05040001h. An abort from the master ends the transfer silently.
 //  - Complete access (SII CoE details bit5): subindex 0 or 1 only, subindex 0 travels as 16 bits.
-//    Products without it answer the product's code: 06010000h for the A6B (its abort table has
-//    no 06010004h, L4411-L4552), 06010004h (ETG) for the others.
+//    Products without it answer the product's code, ProductProfile::complete_access_abort
+//    (profile.yaml `complete_access_abort`).
 //  - A download is stored at once; objects whose effect the drive applies only at a transition or
 //    at power-up are read from the store by the module that owns them at that moment (so the
 //    store is the hook; see docs/coe.md). `after_download` tells the parameter store about
@@ -27,7 +27,8 @@ namespace vdrive::firmware::coe {
 
 class ParameterStore;
 
-// The abort a product answers to a complete-access request when it has no complete access.
+// The abort a product answers to a complete-access request when it has no complete access
+// (ProductProfile::complete_access_abort).
 od::SdoAbort complete_access_refusal(const profile::ProductProfile& profile);
 
 class SdoServer {

@@ -4,8 +4,8 @@
 // when mapping/assignment objects may be written and which SDO abort a refused write gets, and
 // which checks happen at SDO-write time rather than at PreOp->SafeOp.
 //
-// limits_for() takes ProductProfile::pdo_rules when the profile carries them; otherwise it falls
-// back to the values below, each read from the product's manual (one place for all constants).
+// limits_for() takes them from ProductProfile::pdo_rules (profile.yaml `pdo_rules`), and
+// watchdog_limits_for() from ProductProfile::sync.watchdog; no product is named in code.
 #include <cstdint>
 
 #include "vdrive/firmware/al_state.hpp"

@@ -34,13 +34,13 @@ SyncMode mode_of(std::uint16_t output_sync_type) {
 }  // namespace
 
 SyncSettings rewrite_from_dc_activation(const SyncRules& rules, SyncSettings s) {
-  if (!rules.mode_follows_dc_activation) return s;
+  if (!rules.spec.sync_types_follow_dc_activation) return s;
   const auto dc = static_cast<std::uint16_t>(SyncType::DcSync0);
   const auto free_run = static_cast<std::uint16_t>(SyncType::FreeRun);
   if (dc_on(s)) {
     // L7750-L7780: 00h/01h/02h -> 02h (1C33h: 00h/22h/02h -> 02h).
     if (s.output_sync_type <= dc) s.output_sync_type = dc;
-    if (s.input_sync_type == free_run || s.input_sync_type == rules.input_sm2_sync_type ||
+    if (s.input_sync_type == free_run || s.input_sync_type == rules.spec.input_sm2_sync_type ||
         s.input_sync_type == dc)
       s.input_sync_type = dc;
   } else {
@@ -66,7 +66,7 @@ SyncDecision check_sync_settings(const SyncRules& rules, const profile::AlStatus
       !accepted(spec.sm3.accepted_sync_types, s.input_sync_type) || !mode_supported(spec, d.mode))
     return refuse(codes.sync_mode_not_supported);
   const bool output_sm2 = s.output_sync_type == static_cast<std::uint16_t>(SyncType::Sm2Event);
-  const bool input_sm2 = s.input_sync_type == rules.input_sm2_sync_type;
+  const bool input_sm2 = s.input_sync_type == rules.spec.input_sm2_sync_type;
   if ((s.dc_activation & kDcActivationMask) == 0 && output_sm2 != input_sm2)
     return refuse(codes.sync_mode_not_supported);
 

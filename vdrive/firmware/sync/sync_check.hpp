@@ -31,8 +31,8 @@ struct SyncDecision {
   std::uint32_t cycle_ns = 0;          // the cycle the drive runs (0 in free run: 1C32h-02h may be 0)
 };
 
-// A6B: 1C32h-01h/1C33h-01h follow 0981h (DC on: DC SYNC0; DC off: DC SYNC0 becomes free run).
-// Returns the settings with the sync types rewritten when the product does this.
+// With spec.sync_types_follow_dc_activation (e.g. A6B) 1C32h-01h/1C33h-01h follow 0981h (DC on:
+// DC SYNC0; DC off: DC SYNC0 becomes free run). Returns the settings, rewritten when the product does this.
 SyncSettings rewrite_from_dc_activation(const SyncRules& rules, SyncSettings settings);
 
 // Order of the checks: sync types (0x0028), DC activation (0x0030), cycle time (0x0035).

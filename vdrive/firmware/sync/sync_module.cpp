@@ -103,8 +103,8 @@ MonitorConfig SyncModule::monitor_config() const {
   }
   c.lock_timeout = rules_.spec.pll_lock_timeout_ns;
   c.lock_edges = rules_.lock_edges;
-  c.missed_threshold = rules_.missed_threshold_object != 0
-                           ? static_cast<int>(objects_.get(rules_.missed_threshold_object, 0) & 0x0F)
+  c.missed_threshold = rules_.spec.missed_sync_threshold_object != 0
+                           ? static_cast<int>(objects_.get(rules_.spec.missed_sync_threshold_object, 0) & 0x0F)
                            : rules_.spec.missed_sync_threshold;
   return c;
 }
@@ -129,16 +129,16 @@ void SyncModule::run_cycle(Nanos now) {
 
 void SyncModule::handle(const MonitorReport& r, Nanos now) {
   if (r.missed > 0) {
-    if (rules_.sm_event_missed_sub != 0) {
-      objects_.count(kOutputSync, rules_.sm_event_missed_sub, static_cast<std::uint64_t>(r.missed));
-      objects_.count(kInputSync, rules_.sm_event_missed_sub, static_cast<std::uint64_t>(r.missed));
+    if (rules_.spec.sm_event_missed_subindex != 0) {
+      objects_.count(kOutputSync, rules_.spec.sm_event_missed_subindex, static_cast<std::uint64_t>(r.missed));
+      objects_.count(kInputSync, rules_.spec.sm_event_missed_subindex, static_cast<std::uint64_t>(r.missed));
     }
-    if (rules_.sync_error_count_object != 0)
-      objects_.count(rules_.sync_error_count_object, 0, static_cast<std::uint64_t>(r.missed));
+    if (rules_.spec.sync_error_count_object != 0)
+      objects_.count(rules_.spec.sync_error_count_object, 0, static_cast<std::uint64_t>(r.missed));
   }
-  if (r.cycle_too_small && rules_.cycle_too_small_sub != 0) {
-    objects_.count(kOutputSync, rules_.cycle_too_small_sub, 1);
-    objects_.count(kInputSync, rules_.cycle_too_small_sub, 1);
+  if (r.cycle_too_small && rules_.spec.cycle_too_small_subindex != 0) {
+    objects_.count(kOutputSync, rules_.spec.cycle_too_small_subindex, 1);
+    objects_.count(kInputSync, rules_.spec.cycle_too_small_subindex, 1);
   }
   if (r.locked_now) {
     for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 0);
@@ -164,12 +164,12 @@ void SyncModule::handle(const MonitorReport& r, Nanos now) {
       raise_fault(codes.no_sync_error, AlState::PreOp);
       break;
     case MonitorReport::Fault::LostSync:
-      if (rules_.sync_error_flag)
+      if (rules_.spec.sync_error_flag)
         for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 1);
       raise_fault(codes.sync_error, AlState::SafeOp);
       break;
     case MonitorReport::Fault::PllError:
-      if (rules_.sync_error_flag)
+      if (rules_.spec.sync_error_flag)
         for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 1);
       raise_fault(codes.pll_error, AlState::SafeOp);
       break;

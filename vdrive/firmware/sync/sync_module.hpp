@@ -1,13 +1,14 @@
 #pragma once
 // Synchronisation of the drive to the master (issue 4 item 5), as a firmware module:
 //  - PreOp->SafeOp: reads 0981h/09A0h through the PDI and 1C32h/1C33h, applies the product's
-//    rewrite (A6B) and checks (sync_check.hpp): 0x0028 / 0x0030 / 0x0035, fallback PreOp.
+//    rewrite (profile sync.sync_types_follow_dc_activation) and checks (sync_check.hpp): 0x0028 / 0x0030 / 0x0035, fallback PreOp.
 //    Publishes what the drive runs: 1C3xh-0Ah = 09A0h in DC mode, read-only cycle times.
 //  - SafeOp/Op: runs the cyclic task on SYNC0 (AL event bit 2, acknowledged by reading 098Eh;
 //    the pulse is stamped with its system time from 0990h - 09A0h), on the SM2 event (bit 10) or
 //    on a local timer (free run), and supervises the lock (SyncMonitor): 0x002D (no lock in
 //    time, PreOp), 0x002C (missed SYNC0/IRQ >= threshold, SafeOp), 0x0032 (cycle changed, SafeOp).
-//    Counts misses in 1C3xh (and A6B 4F78h), sets 1C3xh-20h on lost sync.
+//    Counts misses in the 1C3xh subindexes and the object the profile names (sync.*_subindex,
+//    sync.sync_error_count_object), sets 1C3xh-20h on lost sync where sync.sync_error_flag says so.
 // The cyclic work itself (process data, drive control) is registered with on_cycle().
 // In SM2 mode the registered task must read the SM2 buffer, which acknowledges the event.
 // Nothing allocates after construction.

@@ -51,11 +51,11 @@ void SyncObjects::load_power_on_values() {
     set(index, sub::kCalcAndCopyTime, o.calc_and_copy_time_ns);
     set(index, sub::kDelayTime, o.delay_time_ns);
     set(index, sub::kSync0CycleTime, 0);
-    if (rules_.sm_event_missed_sub != 0) set(index, rules_.sm_event_missed_sub, 0);
-    if (rules_.cycle_too_small_sub != 0) set(index, rules_.cycle_too_small_sub, 0);
+    if (rules_.spec.sm_event_missed_subindex != 0) set(index, rules_.spec.sm_event_missed_subindex, 0);
+    if (rules_.spec.cycle_too_small_subindex != 0) set(index, rules_.spec.cycle_too_small_subindex, 0);
     set(index, sub::kSyncError, 0);
   }
-  if (rules_.sync_error_count_object != 0) set(rules_.sync_error_count_object, 0, 0);
+  if (rules_.spec.sync_error_count_object != 0) set(rules_.spec.sync_error_count_object, 0, 0);
 }
 
 }  // namespace vdrive::firmware::sync

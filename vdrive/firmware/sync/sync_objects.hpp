@@ -1,9 +1,10 @@
 #pragma once
 // The drive's view of its synchronisation objects in the object dictionary: 1C32h/1C33h (values
-// it reads at PreOp->SafeOp and the read-only values and counters it maintains), the A6B's
-// lost-sync threshold 3742h and sync error count 4F78h. Entries are looked up once at
-// construction; an entry the product's dictionary lacks reads 0 and ignores writes. Reads and
-// writes go to ObjectStore::raw (the drive updates its own read-only objects), allocate nothing.
+// it reads at PreOp->SafeOp and the read-only values and counters it maintains), and the objects
+// the profile names for the lost-sync threshold and the sync error count (A6B 3742h, 4F78h).
+// Entries are looked up once at construction; an entry the product's dictionary lacks reads 0 and
+// ignores writes. Reads and writes go to ObjectStore::raw (the drive updates its own read-only
+// objects), allocate nothing.
 #include <cstdint>
 
 #include "vdrive/od/object_store.hpp"
