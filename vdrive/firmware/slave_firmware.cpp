@@ -60,6 +60,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   void install_modules(const FirmwareOptions& options) {
     auto mailbox_module = std::make_unique<mailbox::MailboxModule>(context);
     mailbox::MailboxModule* mbx = mailbox_module.get();
+    mailbox_ = mbx;
     modules.push_back(std::move(mailbox_module));
     auto process_data = std::make_unique<pdo::ProcessDataModule>(context);
     auto synchronisation = std::make_unique<sync::SyncModule>(context);
@@ -88,6 +89,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     }
   }
   drive_module::DriveModule* drive_ = nullptr;
+  mailbox::MailboxModule* mailbox_ = nullptr;
 
   std::uint32_t serviced_events() const {
     std::uint32_t events = kEsmEvents;
@@ -229,5 +231,7 @@ Nanos SlaveFirmware::next_deadline() const { return impl_->next_deadline(); }
 void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_switch = id; }
 
 drive::DriveEngine* SlaveFirmware::drive() { return impl_->drive_ ? &impl_->drive_->engine() : nullptr; }
+plant::Plant* SlaveFirmware::plant() { return impl_->drive_ ? &impl_->drive_->plant() : nullptr; }
+mailbox::MailboxModule& SlaveFirmware::mailbox() { return *impl_->mailbox_; }
 
 }  // namespace vdrive::firmware

@@ -15,6 +15,8 @@
 #include "vdrive/profile/product_profile.hpp"
 
 namespace vdrive::drive { class DriveEngine; }
+namespace vdrive::plant { class Plant; }
+namespace vdrive::firmware::mailbox { class MailboxModule; }
 
 namespace vdrive::firmware {
 
@@ -44,6 +46,10 @@ public:
   // The CiA 402 drive (products with drive modes), nullptr for other devices. For observers,
   // tests and fault injection; single-threaded like the rest of the firmware.
   drive::DriveEngine* drive();
+  // The plant that drive moves (nullptr without a drive), and the mailbox module; for fault
+  // injection and observers, on the firmware's thread.
+  plant::Plant* plant();
+  mailbox::MailboxModule& mailbox();
 
 private:
   struct Impl;

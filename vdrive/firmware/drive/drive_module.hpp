@@ -36,6 +36,7 @@ public:
   void before_inputs(Nanos now);
 
   vdrive::drive::DriveEngine& engine() { return *engine_; }
+  plant::Plant& plant() { return plant_; }
 
 private:
   vdrive::drive::BusState bus() const;
