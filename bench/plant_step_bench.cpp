@@ -61,7 +61,7 @@ void BM_TwoMassAxes(benchmark::State& state) {
 BENCHMARK(BM_TwoMassAxes)->Arg(1)->Arg(4)->Arg(16);
 
 void BM_TwoLinkArm(benchmark::State& state) {
-  Plant p(load_plant_file(std::string(VDRIVE_SOURCE_DIR) + "/scenarios/two_link_arm.yaml"));
+  Plant p(load_plant_file(std::string(VDRIVE_SOURCE_DIR) + "/scenarios/plants/two_link_arm.yaml"));
   run(state, p);
 }
 BENCHMARK(BM_TwoLinkArm);

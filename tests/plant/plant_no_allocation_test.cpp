@@ -25,7 +25,7 @@ namespace vdrive::plant {
 namespace {
 
 TEST(PlantAllocation, SteppingTheTwoLinkArmAllocatesNothing) {
-  Plant p(load_plant_file(std::string(VDRIVE_SOURCE_DIR) + "/scenarios/two_link_arm.yaml"));
+  Plant p(load_plant_file(std::string(VDRIVE_SOURCE_DIR) + "/scenarios/plants/two_link_arm.yaml"));
   AxisCommand c;
   c.torque_nm = 0.2;
   p.command(0, c);

@@ -1,4 +1,4 @@
-// Two drives on one shared two-link arm (scenarios/two_link_arm.yaml): the measured joint
+// Two drives on one shared two-link arm (scenarios/plants/two_link_arm.yaml): the measured joint
 // accelerations must match the textbook dynamics M(q) q'' + C(q, q') q' + G(q) = tau, with the
 // motors' reflected rotor inertia lumped into each link (I_i + J_rotor,i N_i^2) and tau_i = N_i T_i.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 namespace vdrive::plant {
 namespace {
 
-const std::string kArm = std::string(VDRIVE_SOURCE_DIR) + "/scenarios/two_link_arm.yaml";
+const std::string kArm = std::string(VDRIVE_SOURCE_DIR) + "/scenarios/plants/two_link_arm.yaml";
 
 struct Arm {  // the analytic model, parameters read from the same description
   double m1, m2, l1, lc1, lc2, i1, i2, n1, n2, g;
