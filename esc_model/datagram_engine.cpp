@@ -89,6 +89,8 @@ void Esc::Impl::execute(DatagramView dg) {
     default:
       break;
   }
+  // Injected working-counter fault: the frame passes, nothing addressed here is executed.
+  if (faults.wkc_error) return;
   switch (static_cast<Command>(dg.command())) {
     case Command::Aprd:
       if (position_here) add = physical_read(ado, data, false);

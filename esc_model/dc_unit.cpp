@@ -204,8 +204,8 @@ void DcUnit::refresh_dynamic(Nanos now) {
     regs_[kSync0Status] = sync0_latched_ ? 1 : 0;
     regs_[kSync1Status] = sync1_latched_ ? 1 : 0;
   } else {
-    regs_[kSync0Status] = (sync0_seen_ && sys >= last_sync0_ && sys - last_sync0_ < pulse) ? 1 : 0;
-    regs_[kSync1Status] = (sync1_seen_ && sys >= last_sync1_ && sys - last_sync1_ < pulse) ? 1 : 0;
+    regs_[kSync0Status] = (!pulses_suppressed_ && sync0_seen_ && sys >= last_sync0_ && sys - last_sync0_ < pulse) ? 1 : 0;
+    regs_[kSync1Status] = (!pulses_suppressed_ && sync1_seen_ && sys >= last_sync1_ && sys - last_sync1_ < pulse) ? 1 : 0;
   }
 
   put_le(&regs_[kStartTime], cyclic_active_ && next_sync0_ != kNever ? next_sync0_ : start_time_, 8);
@@ -338,7 +338,7 @@ SyncEvents DcUnit::tick(Nanos now) {
     first_pulse_pending_ = false;
     last_sync0_ = next_sync0_;
     sync0_seen_ = true;
-    if (act & kSync0Enable) {
+    if ((act & kSync0Enable) && !pulses_suppressed_) {
       events.sync0 = true;
       sync0_latched_ = true;
     }
@@ -349,7 +349,7 @@ SyncEvents DcUnit::tick(Nanos now) {
   if (next_sync1_ != kNever && sys >= next_sync1_) {
     last_sync1_ = next_sync1_;
     sync1_seen_ = true;
-    if (act & kSync1Enable) {
+    if ((act & kSync1Enable) && !pulses_suppressed_) {
       events.sync1 = true;
       sync1_latched_ = true;
     }

@@ -67,6 +67,10 @@ public:
   void set_drift_ppm(double ppm);
   void set_start_offset(Nanos local_at_zero);
 
+  // Injected fault: the schedule runs on, but no SYNC0/SYNC1 pulse is driven (no event, no
+  // 0x098E/0x098F status). Kept across reset(), like the oscillator model.
+  void set_pulses_suppressed(bool suppressed) { pulses_suppressed_ = suppressed; }
+
   // Local and system time at global time `now`.
   std::uint64_t local_time(Nanos now) const;
   std::uint64_t system_time(Nanos now) const;
@@ -120,6 +124,7 @@ private:
   bool sync1_seen_ = false;
   bool sync0_latched_ = false;        // acknowledge-mode status 0x098E / 0x098F
   bool sync1_latched_ = false;
+  bool pulses_suppressed_ = false;
 };
 
 }  // namespace vdrive::esc

@@ -133,6 +133,25 @@ bool Esc::process_frame(std::span<std::uint8_t> pdu, const FrameTiming& timing) 
   return impl_->process_frame(pdu, timing);
 }
 
+void Esc::count_rx_error(int port, bool forwarded) {
+  if (port < 0 || port > 3) return;
+  impl_->count_rx_error(port, forwarded);
+}
+
+void Esc::set_faults(const EscFaults& faults) {
+  Impl& d = *impl_;
+  const bool expire_now = faults.pd_watchdog_expired && !d.faults.pd_watchdog_expired;
+  d.faults = faults;
+  d.sii.set_no_acknowledge(faults.sii_error);
+  d.dc.set_pulses_suppressed(faults.sync_lost);
+  if (expire_now) {
+    d.pd_watchdog.stop();
+    d.pd_watchdog_expired();
+  }
+}
+
+const EscFaults& Esc::faults() const { return impl_->faults; }
+
 void Esc::set_links(const PortLinks& links) { impl_->links_changed(links); }
 
 bool Esc::port_forwards(int port) const {

@@ -25,6 +25,7 @@
 
 #include "common/clock.hpp"
 #include "esc_model/esc_config.hpp"
+#include "esc_model/esc_faults.hpp"
 #include "esc_model/frame_timing.hpp"
 
 namespace vdrive::esc {
@@ -46,6 +47,12 @@ public:
   // Returns false (and counts an RX error) if the frame is malformed, i.e. a real ESC would have
   // destroyed it; the segment then drops the frame.
   bool process_frame(std::span<std::uint8_t> pdu, const FrameTiming& timing);
+
+  // A frame whose FCS is wrong arrived at `port` (0..3): nothing in it is executed. An ESC that
+  // finds the error first counts an invalid frame (0x0300 + 2*port) and forwards the frame
+  // marked; ESCs after it see the mark and count a forwarded RX error (0x0308 + port) instead,
+  // so the master can locate the faulty cable. Counters saturate at 0xFF.
+  void count_rx_error(int port, bool forwarded);
 
   // Physical link per port; set by the segment (topology, cable break). Updates DL status.
   void set_links(const PortLinks& links);
@@ -70,6 +77,10 @@ public:
   // DC oscillator model (see dc_unit.hpp): drift in ppm and the local time at global time 0.
   // A property of the board, so reset() keeps it.
   void set_dc_model(double drift_ppm, Nanos start_offset);
+
+  // Fault injection (esc_faults.hpp): takes effect at once, stays until changed.
+  void set_faults(const EscFaults& faults);
+  const EscFaults& faults() const;
 
   // Test and tooling access to the raw memory, without side effects. The SII (0x0500-0x050F)
   // and DC (0x0900-0x09FF) windows live in SiiEeprom/DcUnit and read 0 here.

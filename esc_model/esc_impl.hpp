@@ -53,6 +53,9 @@ struct Esc::Impl final : PhysicalPort {
   bool pdi_operational = false;
   bool pdi_watchdog_ok = false;
 
+  // ---- injected faults (esc_faults.hpp); kept across power_on_reset
+  EscFaults faults;
+
   // ---- frame context
   Nanos access_now = 0;                 // time of the current access (frame or PDI)
   const FrameTiming* timing = nullptr;  // set while a frame is processed
@@ -91,7 +94,7 @@ struct Esc::Impl final : PhysicalPort {
   void trigger_pd_watchdog();
   void pd_watchdog_expired();
   void pdi_watchdog_expired();
-  void count_rx_error();
+  void count_rx_error(int port = 0, bool forwarded = false);
   void set_al_event(std::uint32_t bits, bool on);
   void set_ecat_event(std::uint16_t bits, bool on);
   std::uint32_t al_event_request() const { return get32(reg::kAlEventRequest); }

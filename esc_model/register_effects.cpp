@@ -106,6 +106,7 @@ void Esc::Impl::configure_watchdogs() {
 }
 
 void Esc::Impl::trigger_pd_watchdog() {
+  if (faults.pd_watchdog_expired) return;  // injected: stays expired whatever the master writes
   pd_watchdog.trigger(access_now);
   if (pd_watchdog.running()) mem[reg::kWatchdogStatusProcessData] |= 0x01;
 }
@@ -124,9 +125,11 @@ void Esc::Impl::pdi_watchdog_expired() {
   update_dl_status();
 }
 
-void Esc::Impl::count_rx_error() {
-  // A malformed frame counts as an invalid frame at port 0, where processing happens.
-  std::uint8_t& count = mem[reg::kRxErrorCounter];
+void Esc::Impl::count_rx_error(int port, bool forwarded) {
+  // A malformed frame counts as an invalid frame at port 0, where processing happens; a frame
+  // already marked bad by an ESC before this one counts as a forwarded error at its port.
+  std::uint8_t& count = forwarded ? mem[reg::kForwardedRxErrorCounter + port]
+                                  : mem[reg::kRxErrorCounter + 2 * port];
   if (count < reg::kCounterMax) ++count;
 }
 

@@ -92,6 +92,7 @@ inline constexpr int kSmShift = 8;                         // SM n interrupt: bi
 // ---- Error counters -----------------------------------------------------------------------
 inline constexpr Addr kRxErrorCounter = 0x0300;   // port p: 0x0300+2p invalid frame, +1 RX error;
                                                   // 0x0308-0x030B forwarded RX errors
+inline constexpr Addr kForwardedRxErrorCounter = 0x0308;  // one byte per port
 inline constexpr Addr kEcatProcessingErrors = 0x030C;
 inline constexpr Addr kPdiErrors = 0x030D;
 inline constexpr Addr kLostLinkCounter = 0x0310;  // 4 bytes, one per port

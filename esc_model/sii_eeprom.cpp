@@ -51,8 +51,14 @@ void SiiEeprom::reset() {
 }
 
 void SiiEeprom::load_config_area() {
-  const bool ok = config_area_valid();
   status_ = static_cast<std::uint16_t>(status_ & ~(kChecksumError | kDeviceInfoError));
+  if (no_acknowledge_) {
+    // No answer from the EEPROM: nothing loaded, and the checksum could not even be checked.
+    status_ |= kAckError | kDeviceInfoError;
+    reload_done_ = false;
+    return;
+  }
+  const bool ok = config_area_valid();
   // A bad checksum leaves the configuration unloaded: device information is not available.
   if (!ok) status_ |= kChecksumError | kDeviceInfoError;
   reload_done_ = ok;
@@ -147,12 +153,10 @@ void SiiEeprom::complete_if_due(Nanos now) {
   if (running_ == kNone || now < busy_until_) return;
   const std::uint32_t address = static_cast<std::uint32_t>(regs_[kAddress]) | (regs_[kAddress + 1] << 8) |
                                 (regs_[kAddress + 2] << 16) | (static_cast<std::uint32_t>(regs_[kAddress + 3]) << 24);
-  switch (running_) {
+  const bool unanswered = no_acknowledge_ && running_ != kReload;  // reload: load_config_area
+  if (unanswered) status_ |= kAckError;
+  switch (unanswered ? kNone : running_) {
     case kRead:
-      if (inject_read_error_) {
-        status_ |= kAckError;
-        break;
-      }
       for (int w = 0; w < kReadWords; ++w) {
         const std::uint16_t value = word(static_cast<std::size_t>(address) + w);
         regs_[kData + 2 * w] = static_cast<std::uint8_t>(value);

@@ -54,8 +54,11 @@ public:
   // the ESC then copies words 0-4 into 0x0140/0x0150/0x0982/0x0152/0x0012.
   bool take_reload_done();
 
-  // Fault injection hook: make read commands fail with an acknowledge error (0x0502 bit13).
-  void set_read_error(bool fail) { inject_read_error_ = fail; }
+  // Fault injection: the EEPROM stops acknowledging. Read, write and reload commands end with
+  // the acknowledge error (0x0502 bit13) and change nothing; a reload (or the power-on load in
+  // reset()) also reports the device information as not loaded (bit12) and loads nothing.
+  // Kept across reset().
+  void set_no_acknowledge(bool fail) { no_acknowledge_ = fail; }
 
 private:
   enum Command : std::uint8_t { kNone = 0, kRead = 1, kWrite = 2, kReload = 4 };
@@ -67,7 +70,7 @@ private:
   void sync_status_bytes();
 
   std::vector<std::uint8_t> image_;
-  bool inject_read_error_ = false;
+  bool no_acknowledge_ = false;
   std::uint8_t regs_[16] = {};   // register image; 0x0502-03 rebuilt from status_ on read
   std::uint16_t status_ = 0;     // 0x0502-03
   Command running_ = kNone;

@@ -19,6 +19,8 @@ public:
   // True exactly once when the running watchdog's period has passed at `now`; it then stops
   // until the next trigger.
   bool expire_if_due(Nanos now);
+  // Stops without expiring (the caller reports the expiry itself, e.g. an injected fault).
+  void stop() { running_ = false; }
   // Expiry time of the running watchdog, or INT64_MAX.
   Nanos deadline() const;
 

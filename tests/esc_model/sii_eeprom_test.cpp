@@ -197,10 +197,10 @@ TEST(SiiEeprom, CommandWhileBusyIsIgnoredAndFlagged) {
 TEST(SiiEeprom, InjectedReadErrorSetsAckError) {
   SiiEeprom e(make_image());
   Master m{e};
-  e.set_read_error(true);
+  e.set_no_acknowledge(true);
   m.command(0x0100, 0x10, 0);
   EXPECT_EQ(m.status(kReadDone) & (kAckError | kBusy), kAckError);
-  e.set_read_error(false);
+  e.set_no_acknowledge(false);
   m.command(0x0100, 0x10, kReadDone);
   EXPECT_EQ(m.status(2 * kReadDone) & (kAckError | kBusy), 0);
   EXPECT_EQ(m.data_word(0, 2 * kReadDone), expected_word(0x10));
