@@ -232,5 +232,43 @@ TEST_F(Line, OffsetDelayAndFrmwAlignSystemTimes) {
   EXPECT_GT(f.le(at[0], 8), 5'000'000'000ull);
 }
 
+// A frame with a bad FCS (fault::WireImpairment corrupt): slave 1 counts an invalid frame at
+// port 0, the slaves behind it forwarded errors at port 0 and, on the way back, at port 1; the
+// master gets nothing. With the line cut after slave 1 only slave 1 sees it.
+void corrupted(Segment& segment) {
+  TestFrame f;
+  f.read(BRD, 0, 0x0000, 1);
+  segment.process_corrupted(f.span(), 0);
+}
+
+TEST_F(Line, CorruptedFrameIsCountedWhereItEntersAndAsForwardedBehind) {
+  assign_addresses();
+  const std::uint64_t dropped = segment.dropped();
+  corrupted(segment);
+  EXPECT_EQ(segment.dropped(), dropped + 1);
+  // 0x0300 invalid frame port 0, 0x0302 port 1, 0x0308 forwarded port 0, 0x0309 port 1.
+  EXPECT_EQ(fprd(0x1001, 0x0300, 1), 1u);
+  EXPECT_EQ(fprd(0x1001, 0x0308, 1), 0u);
+  EXPECT_EQ(fprd(0x1001, 0x0309, 1), 1u) << "the marked frame came back through port 1";
+  EXPECT_EQ(fprd(0x1002, 0x0300, 1), 0u);
+  EXPECT_EQ(fprd(0x1002, 0x0308, 1), 1u);
+  EXPECT_EQ(fprd(0x1002, 0x0309, 1), 1u);
+  EXPECT_EQ(fprd(0x1003, 0x0308, 1), 1u);
+  EXPECT_EQ(fprd(0x1003, 0x0309, 1), 0u) << "the last slave turns it: nothing at port 1";
+  EXPECT_EQ(fprd(0x1003, 0x0302, 1), 0u);
+
+  segment.set_cable(0, false);
+  corrupted(segment);
+  EXPECT_EQ(fprd(0x1001, 0x0300, 1), 2u);
+  EXPECT_EQ(fprd(0x1001, 0x0309, 1), 1u) << "port 1 closed: turned inside slave 1";
+  segment.set_cable(0, true);
+  EXPECT_EQ(fprd(0x1002, 0x0308, 1), 1u);
+
+  segment.set_cable(-1, false);
+  corrupted(segment);  // cut before slave 1: nobody counts
+  segment.set_cable(-1, true);
+  EXPECT_EQ(fprd(0x1001, 0x0300, 1), 2u);
+}
+
 }  // namespace
 }  // namespace vdrive::network

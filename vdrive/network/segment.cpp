@@ -56,15 +56,29 @@ void Segment::update_links() {
   }
 }
 
+// Where a frame turns back: the first slave that does not forward out of port 1.
+std::size_t Segment::turning_slave() const {
+  std::size_t turn = 0;
+  while (turn + 1 < slaves_.size() && cable_ok_[turn + 1] && slaves_[turn]->port_forwards(1)) ++turn;
+  return turn;
+}
+
+void Segment::process_corrupted(std::span<const std::uint8_t> /*ethernet_frame*/, Nanos /*rx_time*/) {
+  ++dropped_;
+  if (slaves_.empty() || !cable_ok_[0]) return;
+  const std::size_t turn = turning_slave();
+  constexpr int kPort0 = 0, kPort1 = 1;
+  for (std::size_t i = 0; i <= turn; ++i) slaves_[i]->count_rx_error(kPort0, /*forwarded=*/i > 0);
+  for (std::size_t i = turn; i-- > 0;) slaves_[i]->count_rx_error(kPort1, /*forwarded=*/true);
+}
+
 bool Segment::process(std::span<std::uint8_t> frame, Nanos rx_time) {
   const std::size_t payload = ethercat_payload(frame);
   if (payload == 0 || slaves_.empty() || !cable_ok_[0]) {
     ++dropped_;
     return false;
   }
-  // Where the frame turns back: the first slave that does not forward out of port 1.
-  std::size_t turn = 0;
-  while (turn + 1 < slaves_.size() && cable_ok_[turn + 1] && slaves_[turn]->port_forwards(1)) ++turn;
+  const std::size_t turn = turning_slave();
 
   const std::span<std::uint8_t> pdu = frame.subspan(payload);
   for (std::size_t i = 0; i <= turn; ++i) {

@@ -42,11 +42,21 @@ public:
   // Allocates nothing.
   bool process(std::span<std::uint8_t> ethernet_frame, Nanos rx_time);
 
+  // A frame that left the master with a wrong FCS (corrupted on the cable into slave 1, see
+  // fault::WireImpairment): its content does not matter, as no ESC executes it. As the silicon
+  // does, slave 1 counts an invalid frame at port 0 (0x0300) and forwards it marked; every other
+  // slave it passes counts a forwarded RX error (0x0308 at port 0 on the way out, 0x0309 at
+  // port 1 on the way back). It never comes back to the master (its NIC drops a bad FCS); it
+  // counts in dropped(). A cable cut before slave 1: nobody sees it. Any frame counts (the FCS
+  // is checked before the EtherType matters); its bytes and time change nothing. Allocates nothing.
+  void process_corrupted(std::span<const std::uint8_t> ethernet_frame, Nanos rx_time);
+
   // Frames that did not come back (not EtherCAT, destroyed by an ESC, line cut at slave 1).
   std::uint64_t dropped() const { return dropped_; }
 
 private:
   void update_links();
+  std::size_t turning_slave() const;
   Nanos hop_delay_;
   std::vector<esc::Esc*> slaves_;
   std::vector<bool> cable_ok_;   // cable_ok_[i]: cable into slave i (from master or slave i-1)
