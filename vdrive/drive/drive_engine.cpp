@@ -73,6 +73,10 @@ DriveEngine::DriveEngine(const profile::ProductProfile& profile, od::ObjectStore
     handlers_[static_cast<std::size_t>(m)] = make_handler(m, ctx_);
   }
   homing_ = static_cast<HomingMode*>(handlers_[mode::hm].get());
+  for (std::size_t i = 0; i < kInjectedFaultCount; ++i) {
+    const std::string& code = alarm_code_for(profile.drive.alarms, static_cast<InjectedFault>(i));
+    injected_alarms_[i] = code.empty() ? nullptr : alarms_.find(code);
+  }
   period_ = std::max<Nanos>(static_cast<Nanos>(profile.drive.control_period_ns), 1000);
 }
 
@@ -176,6 +180,33 @@ bool DriveEngine::raise_al_error(std::uint16_t al_status_code, Nanos now) {
 void DriveEngine::raise_cause(const std::string& code, Nanos t) {
   if (code.empty()) return;
   if (const profile::AlarmSpec* a = alarms_.find(code)) alarms_.raise(*a, t);
+}
+
+void DriveEngine::set_injected_fault(InjectedFault fault, bool active, Nanos now) {
+  injected_[fault_index(fault)] = active;
+  if (active) {
+    raise_injected(fault, now);
+  } else if (const profile::AlarmSpec* a = injected_alarms_[fault_index(fault)]) {
+    // The cause is gone; the monitors re-assert their own causes of the same alarm each step, and
+    // another active fault with this alarm re-asserts it in the next step before any reset.
+    alarms_.set_cause(*a, false);
+  }
+}
+
+void DriveEngine::raise_injected(InjectedFault fault, Nanos t) {
+  const profile::AlarmSpec* a = injected_alarms_[fault_index(fault)];
+  if (!a) return;
+  // A6B: main power loss with the servo off is no alarm (profiles/a6b/profile.yaml, L26690-L26840).
+  if (removes_main_power(fault) && profile_.drive.alarms.supply_alarms_only_when_enabled &&
+      !pds_.power_stage_on() && !alarms_.is_active(*a))
+    return;
+  alarms_.set_cause(*a, true);
+  alarms_.raise(*a, t);   // no-op while active
+}
+
+bool DriveEngine::main_power_present() const {
+  return main_power_ && !injected_[fault_index(InjectedFault::main_power_off)] &&
+         !injected_[fault_index(InjectedFault::under_voltage)];
 }
 
 void DriveEngine::advance_to(Nanos now, const BusState& bus) {
@@ -290,6 +321,9 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
                last_.kind == Setpoint::Kind::Position && was_enabled_;
   mi.now = t;
   monitors_.step(mi);
+  // Injected causes after the monitors, which reset the causes of the alarms they share.
+  for (std::size_t i = 0; i < kInjectedFaultCount; ++i)
+    if (injected_[i]) raise_injected(static_cast<InjectedFault>(i), t);
   if (active_) raise_cause(std::string(active_->pending_alarm()), t);
   if (const std::string_view a = probe_.pending_alarm(); !a.empty()) raise_cause(std::string(a), t);
   if (profile_.drive.limit_switches == profile::LimitSwitchRule::Alarm && limits_.limit_switch_active())
@@ -298,7 +332,7 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   // Power drive system.
   const std::uint16_t controlword = obj_.controlword.get();
   PdsConditions c;
-  c.main_power = main_power_;
+  c.main_power = main_power_present();
   c.torque_off = torque_off;
   c.fault = alarms_.active();
   if (const profile::AlarmSpec* newest = alarms_.newest()) {
@@ -312,7 +346,7 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   c.mode = selector_.active();
   pds_.step(controlword, c);
   if (pds_.fault_reset_event()) alarms_.reset(bus.al_error_pending, t);
-  if (pds_.abort_connection_fault()) raise_cause(profile_.drive.alarms.esm_change_while_enabled, t);
+  if (pds_.abort_connection_fault()) raise_cause(profile_.drive.alarms.abort_connection, t);   // A6B Err88.0 (L33767-L33774)
   if (pds_.state() == PdsState::OperationEnabled && pds_.enabled_event()) {
     // Enabling without a mode that runs is the product's alarm (A6B Err88.1 L10625, DS5C1 E-881).
     if (!active_ || selector_.invalid_request()) raise_cause(profile_.drive.alarms.no_mode_at_enable, t);

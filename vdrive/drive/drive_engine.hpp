@@ -22,6 +22,7 @@
 #include "vdrive/drive/axis_objects.hpp"
 #include "vdrive/drive/control/control_loop.hpp"
 #include "vdrive/drive/drive_context.hpp"
+#include "vdrive/drive/injected_fault.hpp"
 #include "vdrive/drive/io/digital_io.hpp"
 #include "vdrive/drive/io/touch_probe.hpp"
 #include "vdrive/drive/mode_handler.hpp"
@@ -81,6 +82,13 @@ public:
   bool raise_al_error(std::uint16_t al_status_code, Nanos now);
   // Main (power-stage) supply present (PDS transition 3 needs it).
   void set_main_power(bool on) { main_power_ = on; }
+  // An injected fault's cause appears (active) or goes away (injected_fault.hpp). While active the
+  // product's alarm for it (profile.drive.alarms; none: nothing) is raised and its clearing is
+  // refused; main_power_off / under_voltage also take the main power away (6041h bit 4, the PDS's
+  // main-power input), and where the product detects supply loss only with the servo on
+  // (supply_alarms_only_when_enabled) their alarm waits for the power stage to be on.
+  void set_injected_fault(InjectedFault fault, bool active, Nanos now);
+  bool injected_fault(InjectedFault fault) const { return injected_[fault_index(fault)]; }
   // The STO / TO input (true = torque off requested).
   void set_torque_off_input(bool on) { torque_off_input_ = on; }
 
@@ -91,6 +99,8 @@ private:
   void latch_units();
   ModeHandler* handler_for(std::int8_t mode) const;
   void raise_cause(const std::string& code, Nanos t);
+  void raise_injected(InjectedFault fault, Nanos t);
+  bool main_power_present() const;
   void rereference(double found_position);
   void publish(const AxisSample& s, const plant::AxisFeedback& fb);
 
@@ -130,6 +140,8 @@ private:
   bool homed_ = false;
   bool main_power_ = true;
   bool torque_off_input_ = false;
+  std::array<bool, kInjectedFaultCount> injected_{};
+  std::array<const profile::AlarmSpec*, kInjectedFaultCount> injected_alarms_{};   // nullptr: the product has none
   bool cycle_pending_ = false;
   Nanos cycle_time_ = 0;
 };

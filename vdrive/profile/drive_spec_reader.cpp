@@ -113,6 +113,9 @@ DriveAlarmCauses read_alarm_causes(YamlMapReader m) {
   a.encoder_error = m.string("encoder_error", 16);
   a.overvoltage = m.string("overvoltage", 16);
   a.undervoltage = m.string("undervoltage", 16);
+  a.main_power_off = m.string("main_power_off", 16);
+  a.abort_connection = m.string("abort_connection", 16);
+  a.supply_alarms_only_when_enabled = m.boolean("supply_alarms_only_when_enabled");
   m.finish();
   return a;
 }
@@ -200,6 +203,8 @@ void check_drive_alarms(const ProductProfile& p, const std::string& file) {
       {"encoder_error", &a.encoder_error},
       {"overvoltage", &a.overvoltage},
       {"undervoltage", &a.undervoltage},
+      {"main_power_off", &a.main_power_off},
+      {"abort_connection", &a.abort_connection},
   };
   for (const auto& [name, code] : causes)
     if (!code->empty() && p.find_alarm(*code) == nullptr)

@@ -345,8 +345,13 @@ struct DriveAlarmCauses {
   std::string both_limit_switches;                    // both limits active / wrong direction
   std::string homing_error;                           // products with a homing alarm
   std::string encoder_error;                          // encoder communication lost
-  std::string overvoltage;
-  std::string undervoltage;                           // main power lost while enabled
+  std::string overvoltage;                            // DC bus over-voltage
+  std::string undervoltage;                           // DC bus (PN) under-voltage
+  std::string main_power_off;                         // main (power-stage) supply switched off
+  std::string abort_connection;                       // main power lost while enabled with 6007h = 1
+  // undervoltage / main_power_off are detected only while the power stage is on (servo on); with
+  // the servo off the loss shows in 6041h bit 4 alone (A6B). false: detected in any state.
+  bool supply_alarms_only_when_enabled = false;
 };
 
 enum class SoftLimitRule : std::uint8_t {
