@@ -128,6 +128,9 @@ std::span<const std::uint8_t> MailboxClient::receive(std::uint8_t wanted) {
       std::size_t length = 0;
       std::uint8_t type = 0;
       if (read_sm1(length, type)) {
+        const auto counter = static_cast<std::uint8_t>((in_[5] >> 4) & 0x07);
+        if (counter != 0 && counter == last_received_) continue;  // the same message again
+        last_received_ = counter;
         const std::span<const std::uint8_t> payload(in_.data() + kMailboxHeaderSize, length);
         if (type == wanted && !(type == mailbox_type::kCoE && length >= 2 && (payload[1] >> 4) == kCoEServiceEmergency)) {
           return payload;

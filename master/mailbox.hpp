@@ -10,7 +10,9 @@
 // the timeout it toggles the repeat request (0x080E bit 1), waits for the slave's acknowledge
 // (0x080F bit 1) and polls again: the slave then re-sends its last reply. CoE emergencies that
 // arrive while waiting for something else are queued (emergencies()). A mailbox error reply
-// (type 0) becomes MailboxError with its ETG.1000.6 Table 28 code.
+// (type 0) becomes MailboxError with its ETG.1000.6 Table 28 code. A message whose counter
+// (1..7) repeats the one received just before is the slave sending it twice and is dropped
+// (ETG.1000.4); restarted() forgets that counter when the slave's mailbox starts again.
 //
 // Buffers are the slave's mailbox sizes, allocated once in the constructor.
 #include <cstdint>
@@ -80,6 +82,8 @@ public:
   std::span<const std::uint8_t> receive(std::uint8_t type);
   // Reads and discards whatever SM1 holds now (a stale reply of an earlier master).
   void flush();
+  // The slave's mailbox was set up again (Init -> Pre-Op/Boot): its reply counter starts anew.
+  void restarted() { last_received_ = 0; }
 
   std::deque<Emergency>& emergencies() { return emergencies_; }
   std::uint64_t repeat_requests() const { return repeats_; }
@@ -100,6 +104,7 @@ private:
   std::vector<std::uint8_t> out_, in_;
   std::deque<Emergency> emergencies_;
   std::uint64_t repeats_ = 0;
+  std::uint8_t last_received_ = 0;  // counter of the last message taken from SM1, 0 = none
 };
 
 }  // namespace vdrive::master

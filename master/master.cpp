@@ -138,6 +138,7 @@ bool Master::acknowledge_error(std::size_t index) {
 }
 
 void Master::configure_mailbox(Slave& s, bool boot) {
+  if (s.position < mailboxes_.size() && mailboxes_[s.position]) mailboxes_[s.position]->restarted();
   // Bootstrap uses the SII's boot mailbox (words 0x14-0x17) with the same control bytes.
   const std::array<SmSetting, 2> boot_sm{
       SmSetting{s.info.boot_rx_offset, s.info.boot_rx_size, reg::kSmControlMailboxWrite, reg::kSmActivateEnable},

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "vdrive/firmware/coe/coe_server.hpp"
+#include "vdrive/firmware/coe/coe_wire.hpp"
 #include "vdrive/firmware/coe/parameter_store.hpp"
 #include "vdrive/firmware/pdi.hpp"
 #include "vdrive/profile/product_profile.hpp"
@@ -66,6 +67,7 @@ void MailboxModule::entered(AlState from, AlState to, Nanos now) {
     last_request_counter_ = 0;
     reply_counter_ = 0;
     sent_length_ = previous_length_ = 0;
+    duplicate_pending_ = false;
     return;
   }
   if (from != AlState::Init) return;
@@ -158,6 +160,7 @@ void MailboxModule::dispatch(const Header& header, std::span<const std::uint8_t>
     queue_error(ErrorCode::UnsupportedProtocol);
     return;
   }
+  if (inject_abort(payload)) return;
   queue_reply(*coe_, Type::CoE, payload, now);
 }
 
@@ -171,6 +174,7 @@ void MailboxModule::queue_reply(Protocol& protocol, Type type, std::span<const s
     return;
   }
   if (outcome.length == 0) return;
+  if (type == Type::CoE) inject_toggle_error(slot.subspan(kHeaderSize, outcome.length));
   reply_counter_ = next_counter(reply_counter_);
   Header{static_cast<std::uint16_t>(outcome.length), 0, 0, 0, static_cast<std::uint8_t>(type),
          reply_counter_}
@@ -190,6 +194,48 @@ void MailboxModule::queue_error(ErrorCode code) {
   queue_.commit_back(kHeaderSize + kErrorPayloadSize);
 }
 
+// Injected abort_code: the SDO request is not served; an abort of that code answers it, for the
+// request's index and subindex (a segment carries none: 0000h:00).
+bool MailboxModule::inject_abort(std::span<const std::uint8_t> payload) {
+  using namespace coe;
+  if (faults_.abort_code == 0 || payload.size() < sdo::kCommand + 1 ||
+      service_of(payload) != Service::SdoRequest ||
+      static_cast<sdo::Ccs>(payload[sdo::kCommand] >> 5) == sdo::Ccs::Abort) {
+    return false;
+  }
+  const auto ccs = static_cast<sdo::Ccs>(payload[sdo::kCommand] >> 5);
+  const bool initiate = ccs == sdo::Ccs::InitiateDownload || ccs == sdo::Ccs::InitiateUpload;
+  const bool addressed = initiate && payload.size() > sdo::kSubindex;
+  const std::span<std::uint8_t> slot = queue_.back_slot();
+  const std::span<std::uint8_t> reply = slot.subspan(kHeaderSize, sdo::kInitiateSize);
+  put_coe_header(reply, Service::SdoRequest);  // an abort travels as an SDO request
+  reply[sdo::kCommand] = sdo::kAbort;
+  put_u16(reply, sdo::kIndex, addressed ? get_u16(payload, sdo::kIndex) : 0);
+  reply[sdo::kSubindex] = addressed ? payload[sdo::kSubindex] : 0;
+  put_u32(reply, sdo::kData, faults_.abort_code);
+  reply_counter_ = next_counter(reply_counter_);
+  Header{static_cast<std::uint16_t>(sdo::kInitiateSize), 0, 0, 0, static_cast<std::uint8_t>(Type::CoE),
+         reply_counter_}
+      .encode(slot);
+  queue_.commit_back(kHeaderSize + sdo::kInitiateSize);
+  coe_->reset();  // an abort ends the transfer in progress
+  faults_.abort_code = 0;
+  return true;
+}
+
+// Injected toggle_error: the next upload/download segment response gets the other toggle bit.
+void MailboxModule::inject_toggle_error(std::span<std::uint8_t> coe_payload) {
+  using namespace coe;
+  if (!faults_.toggle_error || coe_payload.size() <= sdo::kCommand ||
+      service_of(coe_payload) != Service::SdoResponse) {
+    return;
+  }
+  const std::uint8_t scs = coe_payload[sdo::kCommand] >> 5;
+  if (scs != sdo::kUploadSegmentResponse >> 5 && scs != sdo::kDownloadSegmentResponse >> 5) return;
+  coe_payload[sdo::kCommand] ^= sdo::kToggle;
+  faults_.toggle_error = false;
+}
+
 void MailboxModule::queue_fragments() {
   while (queue_.size() < kReplySlots) {
     const std::span<std::uint8_t> slot = queue_.back_slot();
@@ -205,34 +251,61 @@ void MailboxModule::queue_fragments() {
 
 bool MailboxModule::send_next() {
   if (reply_capacity_ < kMinimumWindow) return false;
-  const SmChannel sm1 = context_.pdi.read_sm(1);
-  if (!sm1.enabled() || (sm1.status & reg::sm::kMailboxFull) != 0) return false;
-  if (emergency_count_ > 0) {
-    std::array<std::uint8_t, kHeaderSize + coe::Emergency::kPayloadSize> message{};
-    reply_counter_ = next_counter(reply_counter_);
-    Header{coe::Emergency::kPayloadSize, 0, 0, 0, static_cast<std::uint8_t>(Type::CoE),
-           reply_counter_}
-        .encode(message);
-    emergencies_[emergency_head_].encode(std::span<std::uint8_t>(message).subspan(kHeaderSize));
-    emergency_head_ = (emergency_head_ + 1) % kEmergencySlots;
-    --emergency_count_;
-    write_sm1(message);
-    return true;
+  // A message lost by an injected fault leaves SM1 free: go on with the next one.
+  for (;;) {
+    const SmChannel sm1 = context_.pdi.read_sm(1);
+    if (!sm1.enabled() || (sm1.status & reg::sm::kMailboxFull) != 0) return false;
+    if (duplicate_pending_) return write_duplicate();
+    if (emergency_count_ > 0) {
+      std::array<std::uint8_t, kHeaderSize + coe::Emergency::kPayloadSize> message{};
+      reply_counter_ = next_counter(reply_counter_);
+      Header{coe::Emergency::kPayloadSize, 0, 0, 0, static_cast<std::uint8_t>(Type::CoE),
+             reply_counter_}
+          .encode(message);
+      emergencies_[emergency_head_].encode(std::span<std::uint8_t>(message).subspan(kHeaderSize));
+      emergency_head_ = (emergency_head_ + 1) % kEmergencySlots;
+      --emergency_count_;
+      if (write_sm1(message)) return true;
+      continue;
+    }
+    if (queue_.empty()) return false;
+    const bool written = write_sm1(queue_.front());
+    queue_.pop_front();
+    if (written) return true;
   }
-  if (queue_.empty()) return false;
-  write_sm1(queue_.front());
-  queue_.pop_front();
+}
+
+// Injected duplicate_replies: the last message once more, same counter, nothing rotates.
+bool MailboxModule::write_duplicate() {
+  duplicate_pending_ = false;
+  put_sm1(std::span<const std::uint8_t>(sent_.data(), sent_length_));
   return true;
 }
 
-// Writes one message into SM1 and pads up to the SM's last byte, which hands it to the master.
-void MailboxModule::write_sm1(std::span<const std::uint8_t> message) {
+// Sends one message: it becomes the one a repeat request resends, then goes to SM1 unless an
+// injected fault loses it. Returns whether SM1 got it.
+bool MailboxModule::write_sm1(std::span<const std::uint8_t> message) {
   const std::size_t n = std::min(message.size(), reply_capacity_);
   std::copy_n(sent_.begin(), sent_length_, previous_.begin());
   previous_length_ = sent_length_;
   std::copy_n(message.begin(), n, sent_.begin());
   sent_length_ = n;
-  context_.pdi.write(sm1_start_, message.first(n));
+  if (faults_.lose_replies > 0) {
+    --faults_.lose_replies;
+    return false;
+  }
+  put_sm1(message.first(n));
+  if (faults_.duplicate_replies > 0) {
+    --faults_.duplicate_replies;
+    duplicate_pending_ = true;
+  }
+  return true;
+}
+
+// Writes one message into SM1 and pads up to the SM's last byte, which hands it to the master.
+void MailboxModule::put_sm1(std::span<const std::uint8_t> message) {
+  const std::size_t n = message.size();
+  context_.pdi.write(sm1_start_, message);
   std::size_t at = n;
   while (at < sm1_length_) {
     const std::size_t chunk = std::min(zeros_.size(), sm1_length_ - at);

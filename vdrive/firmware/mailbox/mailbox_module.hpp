@@ -15,6 +15,8 @@
 //    byte, which hands it to the master); the reply counter cycles 1..7.
 //  - Repeat request (SM1 activate bit1 toggled by the master): the last reply is written again and
 //    PDI control 0x080F bit1 is set equal to it (repeat ack).
+//  - Injected faults (mailbox_faults.hpp): lost, duplicated replies, a wrong toggle bit, an
+//    abort instead of an answer; set_faults() arms them, each is used up as it acts.
 //  - Emergencies: up to kEmergencySlots are kept (oldest dropped) while the mailbox cannot send,
 //    e.g. in Init, and sent first once it can (A6B L4565-L4569).
 // Buffers are sized from the profile's mailbox sizes at construction; nothing allocates later.
@@ -27,6 +29,7 @@
 #include "vdrive/firmware/coe/emergency.hpp"
 #include "vdrive/firmware/foe/foe_server.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
+#include "vdrive/firmware/mailbox/mailbox_faults.hpp"
 #include "vdrive/firmware/mailbox/mailbox_header.hpp"
 #include "vdrive/firmware/mailbox/reply_queue.hpp"
 
@@ -63,6 +66,10 @@ public:
 
   std::size_t pending_replies() const { return queue_.size(); }
   std::size_t pending_emergencies() const { return emergency_count_; }
+  // Fault injection: replaces the faults still to come; faults() counts down as they act.
+  void set_faults(const MailboxFaults& faults) { faults_ = faults; }
+  const MailboxFaults& faults() const { return faults_; }
+
   // The FoE server, nullptr for products without FoE.
   foe::FoeServer* foe() { return foe_.get(); }
 
@@ -72,11 +79,15 @@ private:
   void dispatch(const Header& header, std::span<const std::uint8_t> payload, Nanos now);
   void queue_reply(Protocol& protocol, Type type, std::span<const std::uint8_t> payload, Nanos now);
   void queue_error(ErrorCode code);
+  bool inject_abort(std::span<const std::uint8_t> payload);
+  void inject_toggle_error(std::span<std::uint8_t> coe_payload);
   void queue_fragments();
   bool send_next();
-  void write_sm1(std::span<const std::uint8_t> message);
+  bool write_sm1(std::span<const std::uint8_t> message);
+  void put_sm1(std::span<const std::uint8_t> message);
   void service_repeat_request();
   bool sm_full(int n);
+  bool write_duplicate();
 
   FirmwareContext& context_;
   std::unique_ptr<coe::CoeServer> coe_;
@@ -95,6 +106,8 @@ private:
   std::size_t previous_length_ = 0;
   std::vector<std::uint8_t> zeros_;       // padding up to SM1's last byte
   std::vector<std::uint8_t> resend_;      // a repeated message while sent_/previous_ rotate
+  MailboxFaults faults_;
+  bool duplicate_pending_ = false;        // sent_ goes to SM1 once more when it is free
   std::array<coe::Emergency, kEmergencySlots> emergencies_{};
   std::size_t emergency_head_ = 0, emergency_count_ = 0;
 };
