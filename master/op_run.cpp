@@ -11,24 +11,6 @@ namespace {
 constexpr std::uint16_t kSmOutputParameter = 0x1C32, kSmInputParameter = 0x1C33;
 constexpr std::uint16_t kSyncTypeDcSync0 = 2;
 
-// 1C32h/1C33h: synchronisation type (subindex 1) and cycle time (subindex 2), ETG.1020.
-void write_sync_parameters(Master& master, std::size_t i, Nanos cycle, OpRunResult& result) {
-  const Slave& s = master.slaves()[i];
-  if (!s.info.has_mailbox() || !(s.info.mailbox_protocols & mailbox_protocol::kCoE)) return;
-  // 1C33h:02 follows 1C32h:02 on most drives (read-only there): only 1C32h gets the cycle time.
-  for (std::uint16_t object : {kSmOutputParameter, kSmInputParameter}) {
-    try {
-      SdoClient& sdo = master.sdo(i);
-      sdo.download_value<std::uint16_t>(object, 1, kSyncTypeDcSync0);
-      if (object == kSmOutputParameter) sdo.download_value<std::uint32_t>(object, 2, static_cast<std::uint32_t>(cycle));
-    } catch (const SdoAbort& e) {
-      result.notes.push_back(fmt::format("slave {}: {:04X}h:{:02X} not written ({})", i, object, e.subindex(), e.what()));
-    } catch (const std::exception& e) {
-      result.notes.push_back(fmt::format("slave {}: {:04X}h not written ({})", i, object, e.what()));
-    }
-  }
-}
-
 std::string al_summary(Master& master) {
   std::string text;
   for (std::size_t i = 0; i < master.slaves().size(); ++i) {
@@ -38,6 +20,24 @@ std::string al_summary(Master& master) {
   return text;
 }
 }  // namespace
+
+// 1C32h/1C33h: synchronisation type (subindex 1) and cycle time (subindex 2), ETG.1020.
+void write_dc_sync_parameters(Master& master, std::size_t i, Nanos cycle, std::vector<std::string>& notes) {
+  const Slave& s = master.slaves()[i];
+  if (!s.info.has_mailbox() || !(s.info.mailbox_protocols & mailbox_protocol::kCoE)) return;
+  // 1C33h:02 follows 1C32h:02 on most drives (read-only there): only 1C32h gets the cycle time.
+  for (std::uint16_t object : {kSmOutputParameter, kSmInputParameter}) {
+    try {
+      SdoClient& sdo = master.sdo(i);
+      sdo.download_value<std::uint16_t>(object, 1, kSyncTypeDcSync0);
+      if (object == kSmOutputParameter) sdo.download_value<std::uint32_t>(object, 2, static_cast<std::uint32_t>(cycle));
+    } catch (const SdoAbort& e) {
+      notes.push_back(fmt::format("slave {}: {:04X}h:{:02X} not written ({})", i, object, e.subindex(), e.what()));
+    } catch (const std::exception& e) {
+      notes.push_back(fmt::format("slave {}: {:04X}h not written ({})", i, object, e.what()));
+    }
+  }
+}
 
 OpRunResult run_to_op(Master& master, const OpRunOptions& options,
                       const std::function<void(const std::string&)>& progress) {
@@ -72,7 +72,7 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
       result.notes.push_back("no slave supports DC: running without");
     } else {
       for (std::size_t i = 0; i < master.slaves().size(); ++i) {
-        if (master.slaves()[i].dc_supported) write_sync_parameters(master, i, options.cycle, result);
+        if (master.slaves()[i].dc_supported) write_dc_sync_parameters(master, i, options.cycle, result.notes);
       }
       result.sync0_start = activate_sync0(master, static_cast<std::uint32_t>(options.cycle), options.sync0_shift);
       say(fmt::format("DC: reference 0x{:04X}, {} slaves, SYNC0 every {} ns from system time {}", dc.reference_station,

@@ -53,6 +53,10 @@ struct OpRunResult {
   bool ok() const { return reached_op && stats.wrong_wkc == 0 && left_op == 0 && stats.cycles > 0; }
 };
 
+// 1C32h/1C33h of slave `i`: DC SYNC0 synchronisation (type 2) and the cycle time, ETG.1020. What a
+// slave refuses is noted, not thrown.
+void write_dc_sync_parameters(Master& master, std::size_t i, Nanos cycle, std::vector<std::string>& notes);
+
 // `progress` (optional) gets one line per step. The master must have scanned the line.
 OpRunResult run_to_op(Master& master, const OpRunOptions& options,
                       const std::function<void(const std::string&)>& progress = {});

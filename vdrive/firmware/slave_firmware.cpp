@@ -233,5 +233,6 @@ void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_sw
 drive::DriveEngine* SlaveFirmware::drive() { return impl_->drive_ ? &impl_->drive_->engine() : nullptr; }
 plant::Plant* SlaveFirmware::plant() { return impl_->drive_ ? &impl_->drive_->plant() : nullptr; }
 mailbox::MailboxModule& SlaveFirmware::mailbox() { return *impl_->mailbox_; }
+od::ObjectStore& SlaveFirmware::objects() { return impl_->objects; }
 
 }  // namespace vdrive::firmware

@@ -17,6 +17,7 @@
 namespace vdrive::drive { class DriveEngine; }
 namespace vdrive::plant { class Plant; }
 namespace vdrive::firmware::mailbox { class MailboxModule; }
+namespace vdrive::od { class ObjectStore; }
 
 namespace vdrive::firmware {
 
@@ -50,6 +51,8 @@ public:
   // injection and observers, on the firmware's thread.
   plant::Plant* plant();
   mailbox::MailboxModule& mailbox();
+  // This slave's object values (scenario expectations and traces read them as the drive has them).
+  od::ObjectStore& objects();
 
 private:
   struct Impl;

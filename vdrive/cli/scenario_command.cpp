@@ -1,0 +1,107 @@
+#include "vdrive/cli/scenario_command.hpp"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vdrive/cli/cli_error.hpp"
+#include "vdrive/scenario/junit_writer.hpp"
+#include "vdrive/scenario/scenario_loader.hpp"
+#include "vdrive/scenario/scenario_runner.hpp"
+
+namespace vdrive::cli {
+namespace {
+
+struct ScenarioOptions {
+  std::string path;
+  std::string junit, trace, pcap;
+  std::uint64_t seed = 0;
+  bool seed_given = false;
+  bool verbose = false;
+};
+
+// OUT.csv -> OUT-<name>.csv when several scenarios share one option.
+std::string per_scenario(const std::string& path, const std::string& name, bool several) {
+  if (path.empty() || !several) return path;
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + "-" + name + p.extension().string())).string();
+}
+
+void run(const ScenarioOptions& o) {
+  std::vector<scenario::Scenario> scenarios;
+  try {
+    for (const std::string& f : scenario::scenario_files(o.path)) scenarios.push_back(scenario::load_scenario_file(f));
+  } catch (const scenario::ScenarioError& e) {
+    throw CliError(kExitBadArguments, e.what());
+  }
+  const bool several = scenarios.size() > 1;
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  std::vector<scenario::ScenarioResult> results;
+  std::size_t failed = 0;
+  for (const scenario::Scenario& s : scenarios) {
+    scenario::RunOptions ro;
+    ro.trace_path = per_scenario(o.trace, s.name, several);
+    ro.pcap_path = per_scenario(o.pcap, s.name, several);
+    if (o.seed_given) ro.seed = o.seed;
+    if (o.verbose) ro.log = [&](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
+    if (tty && !o.verbose) {
+      ro.progress = [&](Nanos t) {
+        std::fprintf(stderr, "\r  %s: %.0f of %.0f s simulated", s.name.c_str(), static_cast<double>(t) / 1e9,
+                     static_cast<double>(s.duration) / 1e9);
+        std::fflush(stderr);
+      };
+    }
+    if (o.verbose) std::fprintf(stderr, "%s (%s)\n", s.name.c_str(), s.file.c_str());
+    scenario::ScenarioResult r;
+    try {
+      r = scenario::run_scenario(s, ro);
+    } catch (const std::runtime_error& e) {  // a trace or capture file that cannot be written
+      throw CliError(kExitFailure, e.what());
+    }
+    if (tty && !o.verbose) std::fprintf(stderr, "\r\033[K");
+    const std::size_t passed = r.expectations.size() - (r.failed() - (r.error.empty() ? 0 : 1));
+    std::printf("%s %s: %zu of %zu expectations held, %.3f s simulated in %.2f s\n", r.passed() ? "PASS" : "FAIL",
+                r.name.c_str(), passed, r.expectations.size(), static_cast<double>(r.simulated) / 1e9, r.wall_seconds);
+    if (!r.error.empty()) std::printf("  %s: stopped: %s\n", r.file.c_str(), r.error.c_str());
+    for (const auto& e : r.expectations)
+      if (!e.passed) std::printf("  %s:%d: %s: %s\n", r.file.c_str(), e.line, e.name.c_str(), e.message.c_str());
+    std::fflush(stdout);
+    failed += r.passed() ? 0 : 1;
+    results.push_back(std::move(r));
+  }
+  if (!o.junit.empty()) {
+    try {
+      scenario::write_junit(o.junit, results);
+    } catch (const std::runtime_error& e) {
+      throw CliError(kExitFailure, e.what());
+    }
+  }
+  std::printf("scenarios: %zu passed, %zu failed\n", results.size() - failed, failed);
+  if (failed) throw CLI::RuntimeError(kExitFailure);
+}
+
+}  // namespace
+
+void add_scenario_command(CLI::App& app) {
+  CLI::App* scenario = app.add_subcommand("scenario", "Scripted scenarios in virtual time (docs/scenarios.md)");
+  scenario->require_subcommand(1);
+  auto o = std::make_shared<ScenarioOptions>();
+  CLI::App* cmd = scenario->add_subcommand("run", "Run a scenario file, or every *.yaml in a directory");
+  cmd->add_option("path", o->path, "Scenario file or directory")->required();
+  cmd->add_option("--junit", o->junit, "Write a JUnit XML report to this file");
+  cmd->add_option("--trace", o->trace, "Write the drives' trace (CSV) to this file");
+  cmd->add_option("--pcap", o->pcap, "Write the master's frames (pcapng) to this file");
+  cmd->add_option("--seed", o->seed, "Seed for the random faults (default: the file's seed)")
+      ->each([o](const std::string&) { o->seed_given = true; });
+  cmd->add_flag("--verbose,-v", o->verbose, "Print every step, fault and state change as it happens");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace vdrive::cli

@@ -1,0 +1,32 @@
+#pragma once
+// What one scenario run found: every expectation's verdict, the master's counters, and an error
+// for a run that could not be carried out (the line never reached the start state, a fault that
+// cannot act on its target).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/clock.hpp"
+#include "vdrive/scenario/expectation_check.hpp"
+
+namespace vdrive::scenario {
+
+struct ScenarioResult {
+  std::string name;
+  std::string file;
+  std::vector<ExpectationResult> expectations;
+  std::string error;                 // the run stopped early (expectations then still reported)
+  std::vector<std::string> log;      // steps and faults as they happened, one line each
+  Nanos simulated = 0;               // virtual time covered
+  double wall_seconds = 0.0;
+  std::uint64_t cycles = 0, wrong_wkc = 0, lost_frames = 0;
+
+  std::size_t failed() const {
+    std::size_t n = error.empty() ? 0 : 1;
+    for (const auto& e : expectations) n += e.passed ? 0 : 1;
+    return n;
+  }
+  bool passed() const { return failed() == 0; }
+};
+
+}  // namespace vdrive::scenario

@@ -1,0 +1,35 @@
+#pragma once
+// Runs one scenario in virtual time with the built-in master (docs/scenarios.md):
+//  1. builds the line (products, plants, hop delay) on a VirtualClock and a VirtualWire;
+//  2. faults due at time 0 act before the master starts (an SII error seen by the scan);
+//  3. the master scans, runs the start-up SDOs in Pre-Op, maps the CiA 402 PDOs, configures the
+//     process data and DC and takes the line to `master.start_state` — Safe-Op and Op through the
+//     cyclic frames, as a PLC does;
+//  4. then every cycle: due steps in file order (mailbox steps block the cycle for their few
+//     milliseconds, as a simple master would), fault ends, one cyclic frame, then the drive-side
+//     checks: events, expectations, a trace row;
+//  5. at `duration` every open expectation is decided.
+// Same scenario and seed: the same frames, the same trace, byte for byte.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "vdrive/scenario/scenario.hpp"
+#include "vdrive/scenario/scenario_result.hpp"
+
+namespace vdrive::scenario {
+
+struct RunOptions {
+  std::string trace_path;                       // CSV (trace_writer.hpp); empty: none
+  std::string pcap_path;                        // pcapng of the master's port; empty: none
+  std::optional<std::uint64_t> seed;            // overrides the file's seed
+  std::function<void(const std::string&)> log;  // each step, fault, state and simulated second
+  std::function<void(Nanos)> progress;          // every simulated second
+};
+
+// Never throws for what happens in the run: a failure to start is ScenarioResult::error.
+// Throws std::runtime_error only if a trace or capture file cannot be created.
+ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options = {});
+
+}  // namespace vdrive::scenario
