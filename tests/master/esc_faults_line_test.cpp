@@ -1,0 +1,106 @@
+// ESC and cable faults on a line of real drives, as the master sees them: the ESC only stops doing
+// what the silicon would (SYNC0 pulses, the SM watchdog, working counters), and the firmware
+// reports its own AL status code (A6B lost sync 002Ch after 3742h misses, SM watchdog 001Bh);
+// a cable break after slave 1 and its repair show in the broadcast working counter.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "esc_model/esc_faults.hpp"
+#include "esc_model/registers.hpp"
+#include "master/master.hpp"
+#include "master/op_run.hpp"
+#include "tests/master/virtual_line.hpp"
+
+namespace vdrive::master {
+namespace {
+
+constexpr Nanos kMs = 1'000'000;
+constexpr std::uint16_t kAlErrorFlag = 0x10;
+
+class EscFaultsInOp : public ::testing::Test {
+protected:
+  test::VirtualLine line{{"a6b", "ds5c1"}};
+  Master master{line, line.clock()};
+
+  void SetUp() override {
+    ASSERT_EQ(master.scan(), 2u);
+    master.set_mailbox_timeout(20 * kMs);
+  }
+  std::uint16_t esc_u16(std::size_t slave, std::uint16_t address) {
+    esc::Esc& e = line.network().esc(slave);
+    return static_cast<std::uint16_t>(e.peek(address) | (e.peek(static_cast<std::uint16_t>(address + 1)) << 8));
+  }
+  // Runs to Op with DC; after `healthy` cycles in Op `inject` runs, then the cycles go on until
+  // slave `watched` shows the AL error flag (or the run ends).
+  OpRunResult run(std::size_t watched, const std::function<void()>& inject, int healthy = 100) {
+    OpRunOptions o;
+    o.cycle = 1 * kMs;
+    o.cycles = 600;
+    o.drift_frames = 200;
+    o.mailbox_timeout = 20 * kMs;
+    o.back_to_init = false;
+    // A6B Err80.7: lost sync after 3 consecutive missing SYNC0 (3742h bits 3-0; 0 = never).
+    o.preop = [](Master& m) { m.sdo(0).download_value<std::int16_t>(0x3742, 0, 3); };
+    int cycles = 0;
+    o.done = [&, watched] {
+      if (++cycles == healthy) inject();
+      return cycles > healthy && (esc_u16(watched, esc::reg::kAlStatus) & kAlErrorFlag) != 0;
+    };
+    return run_to_op(master, o);
+  }
+};
+
+TEST_F(EscFaultsInOp, SyncLostMakesTheA6bReportLostSync002C) {
+  const OpRunResult r = run(0, [&] { line.network().esc(0).set_faults({.sync_lost = true}); });
+  ASSERT_TRUE(r.reached_op) << r.error;
+  EXPECT_EQ(esc_u16(0, esc::reg::kAlStatus), 0x0014) << "Safe-Op with the error flag";
+  EXPECT_EQ(esc_u16(0, esc::reg::kAlStatusCode), 0x002C) << "A6B Err80.7 (profile al_codes.sync_error)";
+  EXPECT_EQ(esc_u16(1, esc::reg::kAlStatus), 0x0008) << "the other drive keeps its SYNC0 and Op";
+  EXPECT_GT(r.left_op, 0u);
+}
+
+TEST_F(EscFaultsInOp, ExpiredProcessDataWatchdogIsAlStatusCode001B) {
+  const OpRunResult r = run(1, [&] { line.network().esc(1).set_faults({.pd_watchdog_expired = true}); });
+  ASSERT_TRUE(r.reached_op) << r.error;
+  EXPECT_EQ(esc_u16(1, esc::reg::kAlStatus), 0x0014) << "Safe-Op with the error flag";
+  EXPECT_EQ(esc_u16(1, esc::reg::kAlStatusCode), 0x001B);
+  EXPECT_EQ(line.network().esc(1).peek(esc::reg::kWatchdogStatusProcessData) & 0x01, 0)
+      << "0x0440 reads expired although the master kept writing SM2";
+  EXPECT_EQ(esc_u16(0, esc::reg::kAlStatus), 0x0008);
+}
+
+TEST_F(EscFaultsInOp, WkcErrorCostsTheCyclicFrameItsShareOfTheWorkingCounter) {
+  const OpRunResult r = run(0, [&] { line.network().esc(1).set_faults({.wkc_error = true}); });
+  ASSERT_TRUE(r.reached_op) << r.error;
+  EXPECT_GT(r.stats.wrong_wkc, 0u);
+  // The cyclic LRW still counts slave 1's outputs and inputs; slave 2 executes nothing.
+  EXPECT_EQ(r.stats.last_wkc, master.slaves()[0].process_data.expected_wkc());
+}
+
+TEST(CableFaultOnLine, BreakAfterSlave1AndItsRepairShowInTheBroadcastWorkingCounter) {
+  test::VirtualLine line({"a6b", "ds5c1", "ds1000a"});
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 3u);
+  std::array<std::uint8_t, 2> type{};
+  EXPECT_EQ(master.transport().brd(esc::reg::kType, type), 3);
+  line.network().segment().set_cable(0, false);  // between slave 1 and slave 2
+  EXPECT_EQ(master.transport().brd(esc::reg::kType, type), 1) << "slave 1 closes its port 1 and turns the frame";
+  // Slave 1 reports port 1 without link (DL status 0x0110 bit 5) and counts the lost link.
+  const auto dl = master.transport().fprd_value<std::uint16_t>(master.slaves()[0].station, esc::reg::kDlStatus);
+  ASSERT_TRUE(dl.has_value());
+  EXPECT_EQ(*dl & 0x0030, 0x0010);
+  EXPECT_EQ(master.transport().fprd_value<std::uint8_t>(master.slaves()[0].station, esc::reg::kLostLinkCounter + 1), 1);
+  EXPECT_FALSE(master.transport().fprd_value<std::uint16_t>(master.slaves()[1].station, esc::reg::kDlStatus))
+      << "slave 2 is out of reach";
+  line.network().segment().set_cable(0, true);
+  EXPECT_EQ(master.transport().brd(esc::reg::kType, type), 3);
+  EXPECT_TRUE(master.transport().fprd_value<std::uint16_t>(master.slaves()[1].station, esc::reg::kDlStatus));
+}
+
+}  // namespace
+}  // namespace vdrive::master
