@@ -18,7 +18,8 @@ std::string value_text(const Expectation& e, std::int64_t v) {
       default: return fmt::format("0x{:X}", v);
     }
   }
-  if (v >= 0 && (e.condition.mask || e.probe.kind == Probe::Kind::al_status_code)) return fmt::format("0x{:04X}", v);
+  if (v >= 0 && (e.condition.mask || e.probe.kind == Probe::Kind::al_status_code || e.probe.kind == Probe::Kind::esc_register))
+    return fmt::format("0x{:04X}", v);
   return fmt::format("{}", v);
 }
 

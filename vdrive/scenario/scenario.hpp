@@ -78,10 +78,11 @@ struct Step {
 // What an expectation measures (drive side: the slave's own objects and registers, so it holds
 // for any master).
 struct Probe {
-  enum class Kind : std::uint8_t { object, al_state, al_status_code, master_wrong_wkc, master_lost_frames } kind = Kind::object;
+  enum class Kind : std::uint8_t { object, al_state, al_status_code, esc_register, master_wrong_wkc, master_lost_frames } kind = Kind::object;
   int slave = 0;
-  std::uint16_t index = 0;
+  std::uint16_t index = 0;      // object index, or the register address
   std::uint8_t subindex = 0;
+  std::uint8_t size = 2;        // register bytes (1, 2 or 4), little-endian
 };
 
 struct Condition {
@@ -133,6 +134,10 @@ struct Scenario {
   MasterSpec master;
   std::vector<Step> steps;
   std::vector<Expectation> expectations;
+  // The run is meant to stop early with an error containing this text (e.g. a scan that meets a
+  // broken EEPROM); then that stop is an expectation that held, and its absence one that failed.
+  std::string expect_stop;
+  int expect_stop_line = 0;
 };
 
 }  // namespace vdrive::scenario

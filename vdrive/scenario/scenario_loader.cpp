@@ -333,14 +333,14 @@ Action action_of(Map& step, const Context& c) {
 
 Probe probe_of(Map& m, const Context& c) {
   Probe p;
-  static const std::string_view kProbes[] = {"object", "al_state", "al_status_code", "master"};
+  static const std::string_view kProbes[] = {"object", "al_state", "al_status_code", "register", "master"};
   std::string_view which;
   for (const std::string_view k : kProbes) {
     if (!m.has(k)) continue;
     if (!which.empty()) m.fail(k, fmt::format("an expectation measures one thing; this one has \"{}\" and \"{}\"", which, k));
     which = k;
   }
-  if (which.empty()) m.fail("", "an expectation needs what it measures: object, al_state, al_status_code or master");
+  if (which.empty()) m.fail("", "an expectation needs what it measures: object, al_state, al_status_code, register or master");
   if (which == "master") {
     const std::string counter = m.string("master");
     if (counter == "wrong_wkc") p.kind = Probe::Kind::master_wrong_wkc;
@@ -353,6 +353,11 @@ Probe probe_of(Map& m, const Context& c) {
     p.kind = Probe::Kind::object;
     p.index = static_cast<std::uint16_t>(m.integer("object", 0x1000, 0xFFFF));
     p.subindex = static_cast<std::uint8_t>(m.integer_or("subindex", 0, 255, 0));
+  } else if (which == "register") {
+    p.kind = Probe::Kind::esc_register;
+    p.index = static_cast<std::uint16_t>(m.integer("register", 0, 0x0FFF));
+    p.size = static_cast<std::uint8_t>(m.integer_or("size", 1, 4, 2));
+    if (p.size == 3) m.fail("size", "a register is read as 1, 2 or 4 bytes");
   } else if (which == "al_state") {
     p.kind = Probe::Kind::al_state;
     m.get("al_state");  // the value is the expected state, read as the condition below
@@ -440,6 +445,11 @@ Scenario parse_scenario(std::string_view text, const std::string& file) {
   s.duration = top.time("duration");
   if (s.duration <= 0) top.fail("duration", "must be > 0");
   s.trace_period = top.time_or("trace_period", 0);
+  if (top.has("expect_stop")) {
+    s.expect_stop = top.string("expect_stop");
+    s.expect_stop_line = root["expect_stop"].Mark().line + 1;
+    if (s.expect_stop.empty()) top.fail("expect_stop", "give the text the stop message must contain");
+  }
 
   Map segment = top.map("segment");
   s.hop_delay = segment.time_or("hop_delay", 500);

@@ -92,6 +92,17 @@ public:
     }
     for (ExpectationCheck& c : checks_) c.finish(clock_.now(), events_);
     for (const ExpectationCheck& c : checks_) result_.expectations.push_back(c.result());
+    if (!s_.expect_stop.empty()) {
+      ExpectationResult stop;
+      stop.name = "the run stops: " + s_.expect_stop;
+      stop.line = s_.expect_stop_line;
+      stop.decided = true;
+      stop.time = clock_.now();
+      stop.passed = result_.error.find(s_.expect_stop) != std::string::npos;
+      stop.message = result_.error.empty() ? "the run did not stop" : "stopped: " + result_.error;
+      if (stop.passed) result_.error.clear();
+      result_.expectations.push_back(std::move(stop));
+    }
     result_.simulated = clock_.now();
     if (task_) {
       result_.cycles = task_->stats().cycles;
@@ -298,6 +309,7 @@ private:
     say(fmt::format("fault {} cleared", a.id));
   }
   void act(const AcknowledgeAction& a, Nanos) {
+    master_.read_al_status(static_cast<std::size_t>(a.slave - 1));  // the acknowledge repeats the current state
     master_.acknowledge_error(static_cast<std::size_t>(a.slave - 1));
     say(fmt::format("slave {}: AL error acknowledged", a.slave));
   }
@@ -321,6 +333,12 @@ private:
       }
       case Probe::Kind::al_state: return peek16(static_cast<std::size_t>(p.slave - 1), kAlStatus);
       case Probe::Kind::al_status_code: return peek16(static_cast<std::size_t>(p.slave - 1), kAlStatusCode);
+      case Probe::Kind::esc_register: {
+        esc::Esc& e = network_.esc(static_cast<std::size_t>(p.slave - 1));
+        std::uint32_t v = 0;
+        for (std::uint8_t b = 0; b < p.size; ++b) v |= static_cast<std::uint32_t>(e.peek(static_cast<std::uint16_t>(p.index + b))) << (8 * b);
+        return v;
+      }
       case Probe::Kind::master_wrong_wkc: return task_ ? static_cast<std::int64_t>(task_->stats().wrong_wkc) : 0;
       case Probe::Kind::master_lost_frames: return task_ ? static_cast<std::int64_t>(task_->stats().lost_frames) : 0;
     }
