@@ -58,6 +58,7 @@ struct Plant::Impl {
     dBodyID id = nullptr;
     double own_mass = 0;          // without reflected rotor mass (gravity acts on this)
     bool manual_gravity = false;  // reflected mass added: gravity applied by hand on own_mass
+    double base_mass = 0;         // own_mass before an AxisFaults::load_scale
   };
   struct Joint {
     JointSpec spec;
@@ -65,6 +66,7 @@ struct Plant::Impl {
     int parent = -1, child = -1;  // body indices, -1 = world
     double pos = 0, vel = 0;      // continuous position (hinge angle unwrapped)
     double prev_raw = 0;
+    bool fault_stops = false;     // jam/obstacle stops are set (hinge: its angle frame moved)
   };
   struct Axis {
     AxisSpec spec;
@@ -81,6 +83,10 @@ struct Plant::Impl {
     double ext_load = 0;
     std::uint32_t ext_inputs = 0;
     AxisFeedback fb;
+    AxisFaults faults;
+    double lock_at = 0;           // jam: the load position held
+    bool obstacle_above = true;   // obstacle: a stop above the load (else below)
+    dMass load_own{}, load_full{};  // the load body's mass without / with the reflected rotor
 
     Axis(const AxisSpec& s, double step, double angle0)
         : spec(s), thermal(s.motor, step), encoder(s.encoder, angle0) {}
@@ -135,6 +141,9 @@ struct Plant::Impl {
   void place_initial(const Joint& j);
   void substep(double t);
   void finish_step();
+  void set_stops(const Joint& j, double lo, double hi);
+  void apply_fault_stops(Axis& a);
+  void scale_load(Axis& a, double scale);
 };
 
 void Plant::Impl::add_axis_load_body(AxisSpec& a, std::size_t index) {
@@ -240,7 +249,7 @@ void Plant::Impl::build() {
     if (!(s.mass_kg > 0)) fail("body '" + s.name + "': mass_kg must be > 0");
     for (double i : s.inertia_kgm2)
       if (!(i > 0)) fail("body '" + s.name + "': inertia_kgm2 entries must be > 0");
-    Body b{s.name, dBodyCreate(world), s.mass_kg, false};
+    Body b{s.name, dBodyCreate(world), s.mass_kg, false, s.mass_kg};
     dBodySetPosition(b.id, s.position_m[0], s.position_m[1], s.position_m[2]);
     dMass m;
     dMassSetParameters(&m, s.mass_kg, 0, 0, 0, s.inertia_kgm2[0], s.inertia_kgm2[1],
@@ -298,6 +307,7 @@ void Plant::Impl::build() {
     if (t.backlash > 0 && t.stiffness <= 0) fail(where + "transmission.stiffness must be > 0 with backlash");
     Body& load = bodies[joints[ji].child];
     const double reflected = s.motor.rotor_inertia_kgm2 / (r * r);
+    dBodyGetMass(load.id, &a.load_own);
     if (a.two_mass) {
       // The rotor is its own body on a hinge to the world (no gravity: its centre is on its axis).
       a.rotor = dBodyCreate(world);
@@ -345,6 +355,7 @@ void Plant::Impl::build() {
       dBodySetGravityMode(load.id, 0);
       load.manual_gravity = true;
     }
+    dBodyGetMass(load.id, &a.load_full);
     axes.push_back(std::move(a));
   }
 
@@ -368,6 +379,7 @@ void Plant::Impl::substep(double t) {
     Joint& j = joints[a.joint];
     const MotorParams& m = a.spec.motor;
     const TransmissionSpec& tr = a.spec.transmission;
+    if (a.faults.jam || a.faults.obstacle || j.fault_stops) apply_fault_stops(a);
     const double theta = a.motor_angle(j), w = a.motor_vel(j);
 
     double torque;
@@ -385,8 +397,8 @@ void Plant::Impl::substep(double t) {
     a.torque = torque;
     a.loss_j += a.current * a.current * m.winding_resistance_ohm * dt;
 
-    const bool braked = a.spec.brake.fitted && !a.cmd.brake_released;
-    const double ext = load_at(a.spec.load_profile, t) + a.ext_load;
+    const bool braked = a.spec.brake.fitted && !a.cmd.brake_released && !a.faults.brake_failure;
+    const double ext = load_at(a.spec.load_profile, t) + a.ext_load + a.faults.added_force;
     double load_force = ext - a.spec.friction.viscous * j.vel;
     double dry = dry_friction(a.spec.friction, std::abs(j.vel));
     if (a.two_mass) {
@@ -416,6 +428,81 @@ void Plant::Impl::substep(double t) {
   for (Joint& j : joints) read_joint(j);
   for (Axis& a : axes)
     if (a.two_mass) read_rotor(a);
+}
+
+// ODE limits on the joint in its own angle frame; +-dInfinity turns one off. Both are opened first
+// so that no intermediate pair has lo > hi. ODE re-tests a limit only while a stop is finite (a
+// hinge's within +-pi) and otherwise keeps the last result, so a joint left at a stop with both
+// turned off would keep a stale limit row (an LCP assertion): an "off" low stop is therefore a
+// finite one the load cannot reach (hinge: -pi, never below the angle's range; slider: -1e30).
+void Plant::Impl::set_stops(const Joint& j, double lo, double hi) {
+  const bool hinge = j.spec.type == JointType::hinge;
+  if (lo == -dInfinity) lo = hinge ? -M_PI : -1e30;
+  auto set = [&](int param, double v) {
+    if (hinge) dJointSetHingeParam(j.id, param, v);
+    else dJointSetSliderParam(j.id, param, v);
+  };
+  set(dParamLoStop, -dInfinity);
+  set(dParamHiStop, dInfinity);
+  set(dParamLoStop, lo);
+  set(dParamHiStop, hi);
+}
+
+// Jam and obstacle as joint stops, each substep. The tightest of the machine's end stops, the
+// obstacle and the jam lock wins on each side. ODE measures a hinge's angle in (-pi, pi] and takes
+// stops only inside it, while a load may have turned many times: the hinge's angle frame is moved
+// (dJointSetHingeAxisOffset) so the load sits within pi/2 of the frame's zero, and a stop further
+// than pi/2 - margin away is left off until the load comes nearer (it moves far less per substep).
+void Plant::Impl::apply_fault_stops(Axis& a) {
+  Joint& j = joints[a.joint];
+  const bool hinge = j.spec.type == JointType::hinge;
+  const bool active = a.faults.jam || a.faults.obstacle.has_value();
+  if (!active) {  // faults gone: the machine's own stops in the original frame (raw = q mod 2 pi)
+    if (hinge) {
+      dVector3 ax;
+      dJointGetHingeAxis(j.id, ax);
+      dJointSetHingeAxisOffset(j.id, ax[0], ax[1], ax[2], wrap_pi(j.pos));
+      j.prev_raw = dJointGetHingeAngle(j.id);
+    }
+    set_stops(j, j.spec.lower_stop ? *j.spec.lower_stop : -dInfinity, j.spec.upper_stop ? *j.spec.upper_stop : dInfinity);
+    j.fault_stops = false;
+    return;
+  }
+  double lo = j.spec.lower_stop ? *j.spec.lower_stop : -dInfinity;
+  double hi = j.spec.upper_stop ? *j.spec.upper_stop : dInfinity;
+  if (const auto& o = a.faults.obstacle) {
+    if (a.obstacle_above) hi = std::min(hi, *o);
+    else lo = std::max(lo, *o);
+  }
+  if (a.faults.jam) lo = hi = a.lock_at;
+  j.fault_stops = true;
+  if (!hinge) {
+    set_stops(j, lo, hi);
+    return;
+  }
+  double raw = dJointGetHingeAngle(j.id);
+  if (std::abs(raw) > 0.5 * M_PI) {
+    dVector3 ax;
+    dJointGetHingeAxis(j.id, ax);
+    dJointSetHingeAxisOffset(j.id, ax[0], ax[1], ax[2], 0.0);
+    raw = dJointGetHingeAngle(j.id);
+    j.prev_raw = raw;
+  }
+  constexpr double margin = 0.05;
+  const double reach = M_PI - margin;
+  const double lo_raw = lo - j.pos + raw, hi_raw = hi - j.pos + raw;
+  set_stops(j, lo_raw > -reach ? lo_raw : -dInfinity, hi_raw < reach ? hi_raw : dInfinity);
+}
+
+// The load body's own mass and inertia times `scale`, the reflected rotor part unchanged.
+void Plant::Impl::scale_load(Axis& a, double scale) {
+  Joint& j = joints[a.joint];
+  Body& body = bodies[j.child];
+  dMass m = a.load_full;
+  m.mass = a.load_own.mass * scale + (a.load_full.mass - a.load_own.mass);
+  for (int i = 0; i < 12; ++i) m.I[i] = a.load_own.I[i] * scale + (a.load_full.I[i] - a.load_own.I[i]);
+  dBodySetMass(body.id, &m);
+  body.own_mass = body.base_mass * scale;
 }
 
 void Plant::Impl::finish_step() {
@@ -453,6 +540,9 @@ void Plant::Impl::finish_step() {
     if ((j.spec.lower_stop && q <= *j.spec.lower_stop + stop_tolerance) ||
         (j.spec.upper_stop && q >= *j.spec.upper_stop - stop_tolerance))
       fb.faults |= fault::end_stop;
+    if (const auto& o = a.faults.obstacle;
+        o && (a.obstacle_above ? q >= *o - stop_tolerance : q <= *o + stop_tolerance))
+      fb.faults |= fault::end_stop;   // against the obstacle (AxisFaults::obstacle)
     fb.lost_steps = a.cmd.stepper_open_loop
                         ? stepper_lost_steps(m.stepper_rotor_teeth, fb.motor_angle_rad, a.cmd.stepper_angle_rad)
                         : 0;
@@ -504,6 +594,39 @@ double Plant::step_s() const { return impl_->desc.step_s; }
 void Plant::set_external_load(std::size_t axis, double force) { impl_->axes.at(axis).ext_load = force; }
 void Plant::set_external_input(std::size_t axis, std::uint32_t bits) { impl_->axes.at(axis).ext_inputs = bits; }
 void Plant::clear_faults(std::size_t axis) { impl_->axes.at(axis).fb.faults = 0; }
+
+void Plant::set_axis_faults(std::size_t axis, const AxisFaults& f) {
+  Impl& p = *impl_;
+  Impl::Axis& a = p.axes.at(axis);
+  const Impl::Joint& j = p.joints[a.joint];
+  const std::string where = "axis '" + a.spec.name + "': ";
+  if (!(f.load_scale > 0) || !std::isfinite(f.load_scale)) fail(where + "load_scale must be a finite number > 0");
+  if (!std::isfinite(f.added_force)) fail(where + "added_force must be finite");
+  if (f.obstacle && !std::isfinite(*f.obstacle)) fail(where + "obstacle must be finite");
+  if (f.load_scale != a.faults.load_scale) {
+    if (a.two_mass) {  // the explicit coupling spring must stay stable with the lighter load (see build)
+      const TransmissionSpec& t = a.spec.transmission;
+      double jl = a.load_own.mass * f.load_scale;
+      if (j.spec.type == JointType::hinge) {
+        const auto& ax = j.spec.axis;
+        const double n = std::hypot(ax[0], ax[1], ax[2]);
+        jl = 0;
+        for (int r = 0; r < 3; ++r)
+          for (int k = 0; k < 3; ++k) jl += ax[r] / n * a.load_own.I[r * 4 + k] * f.load_scale * ax[k] / n;
+      }
+      const double reflected = a.spec.motor.rotor_inertia_kgm2 / (a.r * a.r);
+      if (std::sqrt(t.stiffness * (1.0 / reflected + 1.0 / jl)) * p.dt > 0.5)
+        fail(where + "load_scale makes the transmission too stiff for the step: raise substeps");
+    }
+    p.scale_load(a, f.load_scale);
+  }
+  if (f.jam && !a.faults.jam) a.lock_at = j.pos;   // seized where it is now
+  if (f.obstacle && (!a.faults.obstacle || *a.faults.obstacle != *f.obstacle))
+    a.obstacle_above = j.pos < *f.obstacle || (j.pos == *f.obstacle && j.vel >= 0);   // the side it comes from
+  a.faults = f;
+}
+
+const AxisFaults& Plant::axis_faults(std::size_t axis) const { return impl_->axes.at(axis).faults; }
 
 double Plant::energy() const {
   const Impl& p = *impl_;

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "common/clock.hpp"
+#include "plant/axis_faults.hpp"
 #include "plant/encoder.hpp"
 #include "plant/plant_description.hpp"
 
@@ -89,6 +90,12 @@ public:
   void set_external_load(std::size_t axis, double force);  // added to the load profile
   void set_external_input(std::size_t axis, std::uint32_t input_bits);  // ORed into inputs
   void clear_faults(std::size_t axis);
+  // Machine faults of an axis (axis_faults.hpp); throws PlantError for a load_scale <= 0, values
+  // that are not finite, or a scaled load that makes a compliant transmission too stiff for the step.
+  // A jam locks the load where it is when the jam begins; an obstacle stops the load on the side it
+  // is on when the obstacle appears (fault::end_stop when it reaches it).
+  void set_axis_faults(std::size_t axis, const AxisFaults& faults);
+  const AxisFaults& axis_faults(std::size_t axis) const;
   // Mechanical energy of the world: kinetic + gravitational + coupling springs (J), evaluated at
   // the half step where ODE's velocities live (see plant.cpp).
   double energy() const;

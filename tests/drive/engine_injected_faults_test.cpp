@@ -176,6 +176,51 @@ TEST(InjectedFault, Ds1000aHasNoAlarmForSupplyEncoderOrTemperature) {
   EXPECT_TRUE(b.emergencies.empty());
 }
 
+// A jammed load (plant::AxisFaults::jam) while the drive moves it: the deviation grows until the
+// product's following-error alarm trips (or its overload first): A6B Err24.0 / 16.0, DS5C1 E-100 /
+// E-161, DS1000A-EC FF02h (with a 2108h level set) / FF01h.
+TEST(InjectedFault, JamWhileMovingIsTheProductsFollowingErrorOrOverload) {
+  for (const char* id : {"a6b", "ds5c1", "ds1000a"}) {
+    for (const std::int8_t m : {mode::csp, mode::pp}) {
+      SCOPED_TRACE(std::string(id) + " mode " + std::to_string(m));
+      EngineBench b(id);
+      if (std::string(id) == "ds1000a") {
+        // Factory 2108h is 7FFFFFFFh pulses (never a full count, objects.yaml); a machine sets a
+        // level: one motor revolution here. The closed loop has no other alarm for a stall.
+        const auto& level = b.profile().drive.levels.following_error;
+        b.set(level.index, level.subindex, std::llround(b.per_rev() * b.engine().units().increments_per_user()));
+      }
+      ASSERT_TRUE(b.enable(m)) << b.diag();
+      const profile::DriveAlarmCauses& causes = b.profile().drive.alarms;
+      const std::uint16_t following = b.engine().alarms().find(causes.following_error)->error_code;
+      const std::uint16_t overload = b.engine().alarms().find(causes.overload)->error_code;
+      const std::int64_t start = b.position();
+      const double speed = b.user_speed(300);
+      const Nanos t0 = b.now();
+      if (m == mode::pp) {
+        b.set(0x6081, 0, std::llround(speed));
+        b.set(0x607A, 0, start + std::llround(100 * b.per_rev()));
+        b.command(kCwEnable | kCwNewSetPoint, 5 * kMs);
+        b.command(kCwEnable, 1 * kMs);
+      }
+      auto master = [&](Nanos now) {   // csp: ramp up to `speed` in 0.2 s, then cruise
+        const double t = static_cast<double>(now - t0) * 1e-9, ramp = 0.2;
+        const double s = t < ramp ? speed * t * t / (2 * ramp) : speed * (t - ramp / 2);
+        if (m == mode::csp) b.set(0x607A, 0, start + std::llround(s));
+      };
+      b.run(400 * kMs, master);
+      ASSERT_EQ(b.get(0x603F), 0) << "moves freely first " << b.diag();
+      ASSERT_GT(std::abs(b.position() - start), 0.5 * b.per_rev()) << b.diag();
+      b.plant().set_axis_faults(0, {.jam = true});
+      EXPECT_TRUE(b.run_until([&] { return b.get(0x603F) != 0; }, 5'000 * kMs, master)) << b.diag();
+      const auto code = static_cast<std::uint16_t>(b.get(0x603F));
+      EXPECT_TRUE(code == following || code == overload) << b.diag();
+      b.run(300 * kMs, master);
+      EXPECT_EQ(b.engine().state(), PdsState::Fault) << b.diag();
+    }
+  }
+}
+
 TEST(InjectedFault, NamesRoundTrip) {
   for (std::size_t i = 0; i < kInjectedFaultCount; ++i) {
     const auto f = static_cast<InjectedFault>(i);
