@@ -27,6 +27,7 @@ namespace {
 
 constexpr std::uint16_t kAlStatus = 0x0130, kAlStatusCode = 0x0134;
 constexpr std::uint64_t kSafeOpCycles = 100;  // cyclic frames in Safe-Op before Op is requested
+constexpr Nanos kMailboxTimeout = 20'000'000;
 
 // A step or the start-up that cannot go on; its message becomes ScenarioResult::error.
 class RunError : public std::runtime_error {
@@ -162,7 +163,9 @@ private:
   }
 
   void start() {
-    master_.set_mailbox_timeout(100'000'000);
+    // Mailbox steps hold the cyclic frames while they wait (see the header): a short timeout keeps
+    // a lost reply and its repeat request well inside the drives' 100 ms SM watchdog.
+    master_.set_mailbox_timeout(kMailboxTimeout);
     const std::size_t found = master_.scan();
     say(fmt::format("scan: {} slaves", found));
     if (found != network_.size()) throw RunError(fmt::format("the scan found {} slaves, the segment has {}", found, network_.size()));
@@ -209,6 +212,8 @@ private:
     if (!master_.request_state(master::AlState::SafeOp)) throw RunError("not every slave reached Safe-Op:" + al_summary());
     say("Safe-Op");
     task_ = std::make_unique<master::CyclicTask>(master_.transport(), layout_, network_.size(), s_.master.cycle, reference);
+    // Half a cycle for the reply, so a lost frame costs its own cycle and not the next one too.
+    task_->set_reply_timeout(s_.master.cycle / 2);
     task_->on_outputs([this](std::span<std::uint8_t> image) {
       for (AxisControl& a : axes_) a.outputs(image, clock_.now());
     });

@@ -5,9 +5,10 @@
 //  3. the master scans, runs the start-up SDOs in Pre-Op, maps the CiA 402 PDOs, configures the
 //     process data and DC and takes the line to `master.start_state` — Safe-Op and Op through the
 //     cyclic frames, as a PLC does;
-//  4. then every cycle: due steps in file order (mailbox steps block the cycle for their few
-//     milliseconds, as a simple master would), fault ends, one cyclic frame, then the drive-side
-//     checks: events, expectations, a trace row;
+//  4. then every cycle: due steps in file order, fault ends, one cyclic frame (its reply awaited
+//     for half a cycle), then the drive-side checks: events, expectations, a trace row. Mailbox
+//     steps (SDO writes, AL acknowledge) hold the cyclic frames while they run, as a simple master
+//     would: a fraction of a millisecond normally, up to 2 x 20 ms when a reply is lost;
 //  5. at `duration` every open expectation is decided.
 // Same scenario and seed: the same frames, the same trace, byte for byte.
 #include <cstdint>
