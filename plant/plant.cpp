@@ -464,7 +464,8 @@ void Plant::Impl::apply_fault_stops(Axis& a) {
       dJointSetHingeAxisOffset(j.id, ax[0], ax[1], ax[2], wrap_pi(j.pos));
       j.prev_raw = dJointGetHingeAngle(j.id);
     }
-    set_stops(j, j.spec.lower_stop ? *j.spec.lower_stop : -dInfinity, j.spec.upper_stop ? *j.spec.upper_stop : dInfinity);
+    set_stops(j, j.spec.lower_stop ? *j.spec.lower_stop : -dInfinity,
+              j.spec.upper_stop ? *j.spec.upper_stop : dInfinity);
     j.fault_stops = false;
     return;
   }

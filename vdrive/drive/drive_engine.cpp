@@ -346,7 +346,8 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   c.mode = selector_.active();
   pds_.step(controlword, c);
   if (pds_.fault_reset_event()) alarms_.reset(bus.al_error_pending, t);
-  if (pds_.abort_connection_fault()) raise_cause(profile_.drive.alarms.abort_connection, t);   // A6B Err88.0 (L33767-L33774)
+  // Main power lost in OE with 6007h = 1: A6B Err88.0 (L33767-L33774).
+  if (pds_.abort_connection_fault()) raise_cause(profile_.drive.alarms.abort_connection, t);
   if (pds_.state() == PdsState::OperationEnabled && pds_.enabled_event()) {
     // Enabling without a mode that runs is the product's alarm (A6B Err88.1 L10625, DS5C1 E-881).
     if (!active_ || selector_.invalid_request()) raise_cause(profile_.drive.alarms.no_mode_at_enable, t);

@@ -6,7 +6,8 @@ namespace vdrive::drive {
 namespace {
 
 constexpr std::array<std::string_view, kInjectedFaultCount> kNames{
-    "encoder_error", "over_voltage", "under_voltage", "main_power_off", "over_temperature", "following_error", "overload"};
+    "encoder_error",    "over_voltage",    "under_voltage", "main_power_off",
+    "over_temperature", "following_error", "overload"};
 
 }  // namespace
 

@@ -39,5 +39,6 @@ constexpr bool removes_main_power(InjectedFault f) {
 }
 
 constexpr std::size_t fault_index(InjectedFault f) { return static_cast<std::size_t>(f); }
+static_assert(fault_index(InjectedFault::overload) + 1 == kInjectedFaultCount, "one count per enumerator");
 
 }  // namespace vdrive::drive
