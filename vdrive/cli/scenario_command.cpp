@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/veth_pair.hpp"
+#include "vdrive/link/link_error.hpp"
 #include "vdrive/scenario/junit_writer.hpp"
 #include "vdrive/scenario/scenario_loader.hpp"
 #include "vdrive/scenario/scenario_runner.hpp"
@@ -25,6 +27,8 @@ struct ScenarioOptions {
   std::uint64_t seed = 0;
   bool seed_given = false;
   bool verbose = false;
+  bool veth = false;          // real time: the built-in master over a veth pair made for the run
+  std::string iface;          // real time: an external master on this interface
 };
 
 // OUT.csv -> OUT-<name>.csv when several scenarios share one option.
@@ -42,6 +46,10 @@ void run(const ScenarioOptions& o) {
     throw CliError(kExitBadArguments, e.what());
   }
   const bool several = scenarios.size() > 1;
+  if (o.veth && !o.iface.empty()) throw CliError(kExitBadArguments, "--veth and --iface exclude each other");
+  // One pair for the whole run; names unique per process so parallel runs do not collide.
+  std::unique_ptr<VethPair> veth;
+  if (o.veth) veth = std::make_unique<VethPair>(fmt::format("vds{}m", ::getpid()), fmt::format("vds{}l", ::getpid()));
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   std::vector<scenario::ScenarioResult> results;
   std::size_t failed = 0;
@@ -50,6 +58,12 @@ void run(const ScenarioOptions& o) {
     ro.trace_path = per_scenario(o.trace, s.name, several);
     ro.pcap_path = per_scenario(o.pcap, s.name, several);
     if (o.seed_given) ro.seed = o.seed;
+    if (veth) {
+      ro.master_interface = veth->master_end();
+      ro.line_interface = veth->slave_end();
+    } else if (!o.iface.empty()) {
+      ro.line_interface = o.iface;
+    }
     if (o.verbose) ro.log = [&](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
     if (tty && !o.verbose) {
       ro.progress = [&](Nanos t) {
@@ -62,6 +76,8 @@ void run(const ScenarioOptions& o) {
     scenario::ScenarioResult r;
     try {
       r = scenario::run_scenario(s, ro);
+    } catch (const link::LinkError& e) {
+      throw CliError(kExitFailure, fmt::format("--{}: {}", o.veth ? "veth" : "iface", e.what()));
     } catch (const std::runtime_error& e) {  // a trace or capture file that cannot be written
       throw CliError(kExitFailure, e.what());
     }
@@ -101,6 +117,9 @@ void add_scenario_command(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "Seed for the random faults (default: the file's seed)")
       ->each([o](const std::string&) { o->seed_given = true; });
   cmd->add_flag("--verbose,-v", o->verbose, "Print every step, fault and state change as it happens");
+  cmd->add_flag("--veth", o->veth, "Real time: the built-in master and the line on a veth pair made for the run (root)");
+  cmd->add_option("--iface", o->iface,
+                  "Real time: serve the line on this interface for an external master; only faults and checks run");
   cmd->callback([o] { run(*o); });
 }
 

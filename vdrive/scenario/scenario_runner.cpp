@@ -18,7 +18,9 @@
 #include "vdrive/od/object_store.hpp"
 #include "vdrive/scenario/axis_control.hpp"
 #include "vdrive/scenario/event_log.hpp"
+#include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/scenario/pcapng_writer.hpp"
+#include "vdrive/scenario/realtime_wire.hpp"
 #include "vdrive/scenario/trace_writer.hpp"
 #include "vdrive/scenario/virtual_wire.hpp"
 
@@ -62,14 +64,15 @@ std::string_view state_name(std::uint16_t al) {
 class Run {
 public:
   Run(const Scenario& s, const RunOptions& o)
-      : s_(s), o_(o), ids_(product_ids(s)), network_(ids_, clock_, network_options(s)),
-        impairment_(o.seed.value_or(s.seed)), wire_(network_, clock_, impairment_), faults_(network_, &impairment_),
-        master_(wire_, clock_), events_(s.slaves.size()), axes_(s.slaves.size()), ran_(s.steps.size(), false) {
+      : s_(s), o_(o), ids_(product_ids(s)), clock_(make_clock(o)), network_(ids_, *clock_, network_options(s)),
+        impairment_(o.seed.value_or(s.seed)), wire_(make_wire()), faults_(network_, &impairment_),
+        events_(s.slaves.size()), axes_(s.slaves.size()), ran_(s.steps.size(), false) {
     result_.name = s.name;
     result_.file = s.file;
+    if (o.line_interface.empty() || !o.master_interface.empty()) master_ = std::make_unique<master::Master>(*wire_, *clock_);
     if (!o.pcap_path.empty()) {
       capture_ = std::make_unique<PcapngWriter>(o.pcap_path);
-      wire_.set_capture(capture_.get());
+      wire_->set_capture(capture_.get());
     }
     if (!o.trace_path.empty()) trace_ = std::make_unique<TraceWriter>(o.trace_path);
     for (const Expectation& e : s.expectations) checks_.emplace_back(e);
@@ -91,20 +94,20 @@ public:
     } catch (const std::exception& e) {
       fail(fmt::format("the master: {}", e.what()));
     }
-    for (ExpectationCheck& c : checks_) c.finish(clock_.now(), events_);
+    for (ExpectationCheck& c : checks_) c.finish(clock_->now(), events_);
     for (const ExpectationCheck& c : checks_) result_.expectations.push_back(c.result());
     if (!s_.expect_stop.empty()) {
       ExpectationResult stop;
       stop.name = "the run stops: " + s_.expect_stop;
       stop.line = s_.expect_stop_line;
       stop.decided = true;
-      stop.time = clock_.now();
+      stop.time = clock_->now();
       stop.passed = result_.error.find(s_.expect_stop) != std::string::npos;
       stop.message = result_.error.empty() ? "the run did not stop" : "stopped: " + result_.error;
       if (stop.passed) result_.error.clear();
       result_.expectations.push_back(std::move(stop));
     }
-    result_.simulated = clock_.now();
+    result_.simulated = clock_->now();
     if (task_) {
       result_.cycles = task_->stats().cycles;
       result_.wrong_wkc = task_->stats().wrong_wkc;
@@ -115,8 +118,23 @@ public:
   }
 
 private:
+  static std::unique_ptr<Clock> make_clock(const RunOptions& o) {
+    if (o.line_interface.empty()) return std::make_unique<VirtualClock>();
+    return std::make_unique<MonotonicClock>();
+  }
+  std::unique_ptr<ScenarioWire> make_wire() {
+    if (auto* v = dynamic_cast<VirtualClock*>(clock_.get())) return std::make_unique<VirtualWire>(network_, *v, impairment_);
+    line_link_ = std::make_unique<link::RawSocketLink>(o_.line_interface);
+    if (!o_.master_interface.empty()) master_link_ = std::make_unique<link::RawSocketLink>(o_.master_interface);
+    return std::make_unique<RealtimeWire>(network_, *clock_, impairment_, master_link_.get(), *line_link_);
+  }
+  master::Master& master(std::string_view what) {
+    if (!master_) throw RunError(fmt::format("{}: an external master drives this line; the step needs the built-in master", what));
+    return *master_;
+  }
+
   void say(const std::string& line) {
-    const std::string text = fmt::format("{:>10.3f} ms  {}", static_cast<double>(clock_.now()) / 1e6, line);
+    const std::string text = fmt::format("{:>10.3f} ms  {}", static_cast<double>(clock_->now()) / 1e6, line);
     result_.log.push_back(text);
     if (o_.log) o_.log(text);
   }
@@ -145,7 +163,7 @@ private:
       if (st.when.event == EventKind::start && st.when.delay == 0 && std::holds_alternative<FaultAction>(st.action)) {
         perform(st);
         ran_[k] = true;
-        events_.step_ran(st.name, clock_.now());
+        events_.step_ran(st.name, clock_->now());
       }
     }
   }
@@ -165,8 +183,9 @@ private:
   void start() {
     // Mailbox steps hold the cyclic frames while they wait (see the header): a short timeout keeps
     // a lost reply and its repeat request well inside the drives' 100 ms SM watchdog.
-    master_.set_mailbox_timeout(kMailboxTimeout);
-    const std::size_t found = master_.scan();
+    if (!master_) return;  // an external master takes the line up
+    master_->set_mailbox_timeout(kMailboxTimeout);
+    const std::size_t found = master_->scan();
     say(fmt::format("scan: {} slaves", found));
     if (found != network_.size()) throw RunError(fmt::format("the scan found {} slaves, the segment has {}", found, network_.size()));
     if (s_.master.start_state == AlTarget::init) return;
@@ -175,47 +194,48 @@ private:
 
   // Pre-Op with the start-up SDOs, then the process data and DC, Safe-Op, and Op in the cycles.
   void go_up_to(AlTarget target) {
-    if (!master_.request_state(master::AlState::PreOp)) throw RunError("not every slave reached Pre-Op:" + al_summary());
+    master::Master& m = master("state");
+    if (!m.request_state(master::AlState::PreOp)) throw RunError("not every slave reached Pre-Op:" + al_summary());
     say("Pre-Op");
     for (const SdoWriteAction& w : s_.master.startup) sdo_write(w);
     if (target == AlTarget::preop) return;
     for (std::size_t i = 0; i < network_.size(); ++i) {
       if (!is_drive(i)) continue;
       try {
-        AxisControl::map_pdos(master_, i);
+        AxisControl::map_pdos(m, i);
       } catch (const std::exception& e) {
         throw RunError(fmt::format("slave {}: the CiA 402 PDO mapping was refused: {}", i + 1, e.what()));
       }
     }
     std::vector<std::string> notes;
-    layout_ = master::configure_process_data(master_, &notes);
+    layout_ = master::configure_process_data(m, &notes);
     std::uint32_t start = UINT32_MAX;
-    for (const master::Slave& sl : master_.slaves()) {
+    for (const master::Slave& sl : m.slaves()) {
       if (sl.process_data.output_bytes) start = std::min(start, sl.process_data.output_logical);
       if (sl.process_data.input_bytes) start = std::min(start, sl.process_data.input_logical);
     }
     for (std::size_t i = 0; i < network_.size(); ++i) {
-      const master::SlaveProcessData& pd = master_.slaves()[i].process_data;
+      const master::SlaveProcessData& pd = m.slaves()[i].process_data;
       if (is_drive(i) && !axes_[i].locate(pd, pd.output_logical - start, pd.input_logical - start, layout_.size()))
         throw RunError(fmt::format("slave {}: the process data is not the CiA 402 mapping the master wrote", i + 1));
     }
     std::uint16_t reference = 0;
     if (s_.master.dc) {
-      const master::DcResult dc = master::configure_dc(master_, master::DcOptions{1000});
+      const master::DcResult dc = master::configure_dc(m, master::DcOptions{1000});
       reference = dc.reference_station;
       for (std::size_t i = 0; i < network_.size(); ++i)
-        if (master_.slaves()[i].dc_supported) master::write_dc_sync_parameters(master_, i, s_.master.cycle, notes);
-      if (dc.dc_slaves) master::activate_sync0(master_, static_cast<std::uint32_t>(s_.master.cycle), 0, 10'000'000);
+        if (m.slaves()[i].dc_supported) master::write_dc_sync_parameters(m, i, s_.master.cycle, notes);
+      if (dc.dc_slaves) master::activate_sync0(m, static_cast<std::uint32_t>(s_.master.cycle), 0, 10'000'000);
       say(fmt::format("DC: reference 0x{:04X}, {} slaves, SYNC0 every {} us", dc.reference_station, dc.dc_slaves, s_.master.cycle / 1000));
     }
     for (const std::string& n : notes) say("note: " + n);
-    if (!master_.request_state(master::AlState::SafeOp)) throw RunError("not every slave reached Safe-Op:" + al_summary());
+    if (!m.request_state(master::AlState::SafeOp)) throw RunError("not every slave reached Safe-Op:" + al_summary());
     say("Safe-Op");
-    task_ = std::make_unique<master::CyclicTask>(master_.transport(), layout_, network_.size(), s_.master.cycle, reference);
+    task_ = std::make_unique<master::CyclicTask>(m.transport(), layout_, network_.size(), s_.master.cycle, reference);
     // Half a cycle for the reply, so a lost frame costs its own cycle and not the next one too.
     task_->set_reply_timeout(s_.master.cycle / 2);
     task_->on_outputs([this](std::span<std::uint8_t> image) {
-      for (AxisControl& a : axes_) a.outputs(image, clock_.now());
+      for (AxisControl& a : axes_) a.outputs(image, clock_->now());
     });
     task_->on_inputs([this](std::span<std::uint8_t> image) {
       for (AxisControl& a : axes_) a.inputs(image);
@@ -233,7 +253,7 @@ private:
     const std::size_t n = std::clamp<std::size_t>(entry->value_bytes, 1, 8);
     for (std::size_t b = 0; b < n; ++b) bytes[b] = static_cast<std::uint8_t>(static_cast<std::uint64_t>(w.value) >> (8 * b));
     try {
-      master_.sdo(i).download(w.index, w.subindex, std::span<const std::uint8_t>(bytes).first(n));
+      master("sdo_write").sdo(i).download(w.index, w.subindex, std::span<const std::uint8_t>(bytes).first(n));
       say(fmt::format("slave {}: {:04X}h:{:02X} := {}", w.slave, w.index, w.subindex, w.value));
     } catch (const master::SdoAbort& e) {
       say(fmt::format("slave {}: {:04X}h:{:02X} := {} aborted: {}", w.slave, w.index, w.subindex, w.value, e.what()));
@@ -241,6 +261,7 @@ private:
   }
 
   AxisControl& axis(int slave, std::string_view what) {
+    master(what);
     AxisControl& a = axes_[static_cast<std::size_t>(slave - 1)];
     if (!a.mapped())
       throw RunError(fmt::format("{}: slave {} has no CiA 402 process data yet (the master maps it on the way to Safe-Op)", what, slave));
@@ -248,7 +269,7 @@ private:
   }
 
   void perform(const Step& st) {
-    const Nanos now = clock_.now();
+    const Nanos now = clock_->now();
     std::visit([&](const auto& a) { act(a, now); }, st.action);
   }
 
@@ -261,9 +282,9 @@ private:
     } else if (!task_ && (a.state == AlTarget::safeop || a.state == AlTarget::op) && a.slave == 0) {
       go_up_to(a.state);
     } else if (a.slave) {
-      master_.request_state(static_cast<std::size_t>(a.slave - 1), target);
+      master("state").request_state(static_cast<std::size_t>(a.slave - 1), target);
     } else {
-      master_.request_state(target);
+      master("state").request_state(target);
     }
   }
   void act(const SdoWriteAction& a, Nanos) { sdo_write(a); }
@@ -314,8 +335,8 @@ private:
     say(fmt::format("fault {} cleared", a.id));
   }
   void act(const AcknowledgeAction& a, Nanos) {
-    master_.read_al_status(static_cast<std::size_t>(a.slave - 1));  // the acknowledge repeats the current state
-    master_.acknowledge_error(static_cast<std::size_t>(a.slave - 1));
+    master("acknowledge").read_al_status(static_cast<std::size_t>(a.slave - 1));  // the acknowledge repeats the current state
+    master_->acknowledge_error(static_cast<std::size_t>(a.slave - 1));
     say(fmt::format("slave {}: AL error acknowledged", a.slave));
   }
 
@@ -323,10 +344,10 @@ private:
     for (std::size_t k = 0; k < s_.steps.size(); ++k) {
       if (ran_[k]) continue;
       const auto t = events_.resolve(s_.steps[k].when);
-      if (!t || *t > clock_.now()) continue;
+      if (!t || *t > clock_->now()) continue;
       ran_[k] = true;
       perform(s_.steps[k]);
-      events_.step_ran(s_.steps[k].name, clock_.now());
+      events_.step_ran(s_.steps[k].name, clock_->now());
     }
   }
 
@@ -355,7 +376,7 @@ private:
   }
 
   void observe() {
-    const Nanos now = clock_.now();
+    const Nanos now = clock_->now();
     std::uint16_t common = 0;
     bool same = true;
     for (std::size_t i = 0; i < network_.size(); ++i) {
@@ -404,11 +425,11 @@ private:
   void loop() {
     last_al_.assign(network_.size(), 0);
     last_status_.assign(network_.size(), 0);
-    Nanos next_cycle = clock_.now();
-    Nanos next_second = (clock_.now() / 1'000'000'000 + 1) * 1'000'000'000;
-    while (clock_.now() < s_.duration) {
+    Nanos next_cycle = clock_->now();
+    Nanos next_second = (clock_->now() / 1'000'000'000 + 1) * 1'000'000'000;
+    while (clock_->now() < s_.duration) {
       run_due_steps();
-      faults_.tick(clock_.now());
+      faults_.tick(clock_->now());
       if (task_) {
         task_->run_cycle();
         if (op_after_cycle_ && task_->stats().cycles >= op_after_cycle_) {
@@ -418,17 +439,18 @@ private:
         }
       }
       observe();
-      if (clock_.now() >= next_second) {
-        say(fmt::format("{} s:{} {} cycles, {} wrong working counters", clock_.now() / 1'000'000'000, al_summary(),
+      if (clock_->now() >= next_second) {
+        say(fmt::format("{} s:{} {} cycles, {} wrong working counters", clock_->now() / 1'000'000'000, al_summary(),
                         task_ ? task_->stats().cycles : 0, task_ ? task_->stats().wrong_wkc : 0));
         next_second += 1'000'000'000;
-        if (o_.progress) o_.progress(clock_.now());
+        if (o_.progress) o_.progress(clock_->now());
       }
       next_cycle += s_.master.cycle;
       // A cycle that ran late (a mailbox step) is not made up: the next starts on the grid.
-      if (next_cycle <= clock_.now())
-        next_cycle += ((clock_.now() - next_cycle) / s_.master.cycle + 1) * s_.master.cycle;
-      master_.transport().idle_until(std::min(next_cycle, s_.duration));
+      if (next_cycle <= clock_->now())
+        next_cycle += ((clock_->now() - next_cycle) / s_.master.cycle + 1) * s_.master.cycle;
+      if (master_) master_->transport().idle_until(std::min(next_cycle, s_.duration));
+      else wire_->serve_until(std::min(next_cycle, s_.duration));
     }
     say(fmt::format("end:{} {} cycles, {} wrong working counters, {} lost frames", al_summary(), task_ ? task_->stats().cycles : 0,
                     task_ ? task_->stats().wrong_wkc : 0, task_ ? task_->stats().lost_frames : 0));
@@ -437,12 +459,13 @@ private:
   const Scenario& s_;
   const RunOptions& o_;
   std::vector<std::string> ids_;
-  VirtualClock clock_;
+  std::unique_ptr<Clock> clock_;
   network::Network network_;
   fault::WireImpairment impairment_;
-  VirtualWire wire_;
+  std::unique_ptr<link::RawSocketLink> line_link_, master_link_;  // real time only
+  std::unique_ptr<ScenarioWire> wire_;
   fault::FaultInjector faults_;
-  master::Master master_;
+  std::unique_ptr<master::Master> master_;                      // null: an external master
   EventLog events_;
   std::vector<AxisControl> axes_;
   std::vector<bool> ran_;

@@ -10,7 +10,10 @@
 //     steps (SDO writes, AL acknowledge) hold the cyclic frames while they run, as a simple master
 //     would: a fraction of a millisecond normally, up to 2 x 20 ms when a reply is lost;
 //  5. at `duration` every open expectation is decided.
-// Same scenario and seed: the same frames, the same trace, byte for byte.
+// Same scenario and seed: the same frames, the same trace, byte for byte (virtual time).
+// In real time (RunOptions::line_interface) the same steps run on the monotonic clock over real
+// interfaces (realtime_wire.hpp); with an external master, steps that need the built-in master
+// (state, sdo_write, acknowledge, CiA 402 steps) stop the run with an error naming the step.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -22,6 +25,11 @@
 namespace vdrive::scenario {
 
 struct RunOptions {
+  // Real time (empty: virtual time). The line is served on `line_interface`; the built-in master
+  // sends on `master_interface` (the other end of a veth pair), or, when that is empty, an external
+  // master drives the line and the scenario only injects faults and checks the drives.
+  std::string line_interface;
+  std::string master_interface;
   std::string trace_path;                       // CSV (trace_writer.hpp); empty: none
   std::string pcap_path;                        // pcapng of the master's port; empty: none
   std::optional<std::uint64_t> seed;            // overrides the file's seed

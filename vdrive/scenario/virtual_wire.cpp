@@ -55,3 +55,12 @@ std::size_t VirtualWire::receive(std::span<std::uint8_t> buf, Nanos timeout) {
 }
 
 }  // namespace vdrive::scenario
+
+namespace vdrive::scenario {
+
+void VirtualWire::serve_until(Nanos until) {
+  std::array<std::uint8_t, link::kMaxFrame> buf{};
+  while (clock_.now() < until) receive(buf, until - clock_.now());
+}
+
+}  // namespace vdrive::scenario

@@ -19,12 +19,11 @@
 #include "vdrive/link/loopback_link.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/scenario/scenario_wire.hpp"
 
 namespace vdrive::scenario {
 
-class PcapngWriter;
-
-class VirtualWire final : public link::Link {
+class VirtualWire final : public ScenarioWire {
 public:
   static constexpr Nanos kWireTime = 20'000;
 
@@ -33,7 +32,8 @@ public:
   bool send(std::span<const std::uint8_t> frame) override;
   std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
 
-  void set_capture(PcapngWriter* capture) { capture_ = capture; }
+  void set_capture(PcapngWriter* capture) override { capture_ = capture; }
+  void serve_until(Nanos until) override;
   const runtime::LoopCounters& counters() const { return counters_; }
 
 private:
