@@ -10,6 +10,7 @@
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/demo_command.hpp"
 #include "vdrive/cli/esi_command.hpp"
+#include "vdrive/cli/fault_command.hpp"
 #include "vdrive/cli/list_drives_command.hpp"
 #include "vdrive/cli/od_command.hpp"
 #include "vdrive/cli/run_command.hpp"
@@ -38,13 +39,14 @@ int main(int argc, char** argv) {
   add_od_command(app);
   add_sii_command(app);
   add_scenario_command(app);
+  add_fault_command(app);
 
   try {
     app.parse(argc, argv);
     // Checked here rather than with require_subcommand(1) so that an unknown option is named
     // first (CLI11 checks requirements before leftovers).
     if (app.get_subcommands().empty()) {
-      return fail(kExitBadArguments, "no command given (run, demo, scenario, list-drives, od, sii, esi; see vdrive --help)");
+      return fail(kExitBadArguments, "no command given (run, demo, scenario, fault, list-drives, od, sii, esi; see vdrive --help)");
     }
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);

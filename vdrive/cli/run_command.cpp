@@ -5,6 +5,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -15,6 +16,11 @@
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/control/control_protocol.hpp"
+#include "vdrive/control/control_socket.hpp"
+#include "vdrive/control/fault_service.hpp"
+#include "vdrive/fault/impaired_link.hpp"
+#include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/link/tap_link.hpp"
 #include "plant/plant.hpp"
@@ -38,7 +44,43 @@ struct RunOptions {
   bool no_qdisc_bypass = false;
   int rt_priority = 0;  // 0: normal scheduling
   std::vector<std::string> plants;  // "N:FILE": slave N (cable order, from 0) moves the plant in FILE
+  std::string control;              // runtime control socket; empty: default_control_path()
+  std::uint64_t fault_seed = 1;     // wire impairment's generator
 };
+
+// Runtime control: a request line from the socket's thread -> the loop -> a reply line.
+std::string answer(control::FaultService& service, std::string_view line) {
+  control::ControlReply reply;
+  try {
+    const control::ControlRequest request = control::parse_request(line);
+    reply = service.call(request, 2'000'000'000);
+    if (reply.ok() && request.op == control::ControlRequest::Op::inject)
+      spdlog::info("fault {} injected: {}", reply.id, fault::describe(request.fault));
+    else if (reply.ok() && request.op == control::ControlRequest::Op::clear)
+      spdlog::info("fault {} cleared", request.id);
+    else if (reply.ok() && request.op == control::ControlRequest::Op::clear_all)
+      spdlog::info("all faults cleared ({})", reply.cleared);
+  } catch (const control::ProtocolError& e) {
+    reply = control::error_reply(control::ControlReply::Status::bad_request, e.what());
+  }
+  if (!reply.ok()) spdlog::warn("control request refused: {}", reply.error);
+  return control::format_reply(reply);
+}
+
+std::unique_ptr<control::ControlServer> open_control(const RunOptions& o, control::FaultService& service) {
+  const std::string path = o.control.empty() ? control::default_control_path(o.tap.empty() ? o.iface : o.tap) : o.control;
+  try {
+    return std::make_unique<control::ControlServer>(
+        path, [&service](std::string_view line) { return answer(service, line); },
+        [](unsigned uid) {
+          return control::format_reply(control::error_reply(
+              control::ControlReply::Status::denied, fmt::format("uid {} may not control this vdrive (only uid {} or root)", uid, ::geteuid())));
+        });
+  } catch (const control::ControlSocketError& e) {
+    throw CliError(e.kind() == control::ControlSocketError::Kind::not_permitted ? kExitNotPermitted : kExitFailure,
+                   fmt::format("--control: {}", e.what()));
+  }
+}
 
 // --plant N:FILE -> per-slave plant descriptions. Errors name the option, the value and, for a bad
 // file, the file, line and field (plant_yaml.hpp).
@@ -139,13 +181,21 @@ void run(const RunOptions& o) {
     }
   }
 
+  // Runtime fault control: a bad-cable stage around the link (one branch while clean) and the
+  // control socket, whose requests the loop picks up between frames.
+  fault::WireImpairment wire(o.fault_seed);
+  fault::ImpairedLink impaired(*link, wire, *network, clock);
+  control::FaultService faults(*network, &wire, &impaired);
+  const std::unique_ptr<control::ControlServer> control = open_control(o, faults);
+
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
   spdlog::info("serving {} drive(s) on {}: {} (hop delay {} ns{}); SIGINT/SIGTERM stops",
                o.drives.size(), where, fmt::join(o.drives, ", "), o.hop_delay,
                o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
+  spdlog::info("fault control on {}", control->path());
   runtime::LoopCounters counters;
   try {
-    runtime::serve(*network, *link, clock, stop, counters);
+    runtime::serve(*network, impaired, clock, stop, counters, &faults);
   } catch (const link::LinkError& e) {  // the interface was removed while serving
     throw CliError(exit_code_for(e.kind()), e.what());
   }
@@ -177,6 +227,10 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--rt-priority", o->rt_priority,
                   "Serve with SCHED_FIFO priority 1..99 and locked memory (default: normal)")
       ->check(CLI::Range(1, 99));
+  cmd->add_option("--control", o->control,
+                  "Runtime fault control socket (default $XDG_RUNTIME_DIR/vdrive/IFACE.sock, /run/vdrive/IFACE.sock "
+                  "for root, else /tmp/vdrive-UID/IFACE.sock); see vdrive fault");
+  cmd->add_option("--fault-seed", o->fault_seed, "Seed of the random wire faults (drop, corrupt, ...; default 1)");
   cmd->add_flag("--no-qdisc-bypass", o->no_qdisc_bypass,
                 "Send through the qdisc layer (so tc sees replies); default bypasses it");
   cmd->callback([o] {

@@ -40,19 +40,21 @@ void handle_frame(network::Network& network, link::Link& link, std::span<std::ui
 }  // namespace
 
 void serve(network::Network& network, link::Link& link, const Clock& clock,
-           const std::atomic<bool>& stop, LoopCounters& counters) {
+           const std::atomic<bool>& stop, LoopCounters& counters, LoopService* service) {
   // Timed waits end at SYNC/firmware deadlines (cycles down to 125 us); the default 50 us timer
   // slack of a normal thread would show as jitter there. 1 ns: wake when asked.
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   FrameBuffer buf;
   while (!stop.load(std::memory_order_relaxed)) {
     Nanos now = clock.now();
+    if (service != nullptr) service->poll(now);
     Nanos deadline = network.next_deadline();
     if (deadline <= now) {
       network.tick(now);
       deadline = network.next_deadline();
       now = clock.now();
     }
+    if (service != nullptr) deadline = std::min(deadline, service->next_deadline());
     const Nanos wait = deadline == kNever ? kMaxWait : std::clamp(deadline - now, Nanos{0}, kMaxWait);
     const std::size_t n = link.receive(buf, wait);
     if (n != 0) handle_frame(network, link, std::span(buf).first(n), clock.now(), counters);

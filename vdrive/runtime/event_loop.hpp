@@ -12,6 +12,7 @@
 
 #include "common/clock.hpp"
 #include "vdrive/link/link.hpp"
+#include "vdrive/runtime/loop_service.hpp"
 #include "vdrive/network/network.hpp"
 
 namespace vdrive::runtime {
@@ -30,8 +31,9 @@ struct LoopCounters {
 // Serves until `stop` becomes true (checked at least every kMaxWait). An exception from the
 // link (LinkError: its interface was removed) ends serving and propagates. Sets the calling
 // thread's timer slack to 1 ns so timed waits end on the deadline, not up to 50 us later.
+// `service` (optional) is polled once per iteration and its deadline joins the network's.
 void serve(network::Network& network, link::Link& link, const Clock& clock,
-           const std::atomic<bool>& stop, LoopCounters& counters);
+           const std::atomic<bool>& stop, LoopCounters& counters, LoopService* service = nullptr);
 
 // Virtual time: handles waiting frames and due timers, advancing `clock` to each deadline up to
 // `until`; returns idle, with the clock at `until` (never moved backwards). Throws

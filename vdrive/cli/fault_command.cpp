@@ -1,0 +1,165 @@
+#include "vdrive/cli/fault_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "vdrive/cli/cli_error.hpp"
+#include "vdrive/control/control_protocol.hpp"
+#include "vdrive/control/control_socket.hpp"
+#include "vdrive/fault/fault_spec.hpp"
+
+namespace vdrive::cli {
+namespace {
+
+constexpr Nanos kReplyTimeout = 5'000'000'000;
+
+struct Target {
+  std::string iface;
+  std::string control;
+  bool json = false;  // print the reply line as it came
+};
+
+struct InjectOptions {
+  std::string kind;
+  std::optional<int> slave, count;
+  std::optional<std::string> duration, direction, delay, abort_code, code;
+  std::optional<double> probability, position, load_scale, force;
+};
+
+std::string path_of(const Target& t) {
+  if (!t.control.empty()) return t.control;
+  if (t.iface.empty()) throw CliError(kExitBadArguments, "fault: --iface IF (the interface vdrive run serves) or --control PATH is required");
+  return control::default_control_path(t.iface);
+}
+
+// Sends one request; returns the reply if it succeeded, else ends with the reply's error.
+control::ControlReply request(const Target& t, const nlohmann::json& req) {
+  const std::string path = path_of(t);
+  std::string line;
+  try {
+    line = control::control_call(path, req.dump(), kReplyTimeout);
+  } catch (const control::ControlSocketError& e) {
+    const bool denied = e.kind() == control::ControlSocketError::Kind::not_permitted;
+    throw CliError(denied ? kExitNotPermitted : kExitFailure,
+                   e.kind() == control::ControlSocketError::Kind::no_server
+                       ? fmt::format("no vdrive serves {}: {}", t.control.empty() ? t.iface : t.control, e.what())
+                       : std::string(e.what()));
+  }
+  control::ControlReply reply;
+  try {
+    reply = control::parse_reply(line);
+  } catch (const control::ProtocolError& e) {
+    throw CliError(kExitFailure, e.what());
+  }
+  if (t.json) fmt::print("{}\n", line);
+  switch (reply.status) {
+    case control::ControlReply::Status::ok: return reply;
+    case control::ControlReply::Status::bad_request: throw CliError(kExitBadArguments, reply.error);
+    case control::ControlReply::Status::denied: throw CliError(kExitNotPermitted, reply.error);
+    case control::ControlReply::Status::failed: break;
+  }
+  throw CliError(kExitFailure, reply.error);
+}
+
+std::string duration_text(Nanos ns) {
+  if (ns % 1'000'000'000 == 0) return fmt::format("{}s", ns / 1'000'000'000);
+  if (ns >= 1'000'000) return fmt::format("{}ms", ns / 1'000'000);
+  return fmt::format("{}us", ns / 1000);
+}
+
+void inject(const Target& t, const InjectOptions& o) {
+  nlohmann::json f{{"kind", o.kind}};
+  if (o.slave) f["slave"] = *o.slave;
+  if (o.count) f["count"] = *o.count;
+  if (o.duration) f["duration"] = *o.duration;
+  if (o.direction) f["direction"] = *o.direction;
+  if (o.delay) f["delay"] = *o.delay;
+  if (o.abort_code) f["abort_code"] = *o.abort_code;
+  if (o.code) f["code"] = *o.code;
+  if (o.probability) f["probability"] = *o.probability;
+  if (o.position) f["position"] = *o.position;
+  if (o.load_scale) f["load_scale"] = *o.load_scale;
+  if (o.force) f["force"] = *o.force;
+  const control::ControlReply r = request(t, {{"op", "inject"}, {"fault", f}});
+  if (t.json) return;
+  if (r.id != 0) fmt::print("fault {} injected\n", r.id);
+  else fmt::print("one-shot fault injected\n");
+}
+
+void list(const Target& t) {
+  const control::ControlReply r = request(t, {{"op", "list"}});
+  if (t.json) return;
+  if (r.faults.empty()) fmt::print("no active faults\n");
+  for (const control::FaultStatus& f : r.faults) {
+    fmt::print("{}\t{}\tfor {}\t{}\n", f.id, f.description, duration_text(f.elapsed),
+               f.remaining < 0 ? "until cleared" : duration_text(f.remaining) + " left");
+  }
+}
+
+void clear(const Target& t, int id, bool all) {
+  if (all == (id != 0)) throw CliError(kExitBadArguments, "fault clear: give a fault ID or --all (not both)");
+  if (all) {
+    const control::ControlReply r = request(t, {{"op", "clear_all"}});
+    if (!t.json) fmt::print("{} fault(s) cleared\n", r.cleared);
+  } else {
+    request(t, {{"op", "clear"}, {"id", id}});
+    if (!t.json) fmt::print("fault {} cleared\n", id);
+  }
+}
+
+void kinds() {
+  for (const fault::FaultKindInfo& i : fault::fault_catalogue())
+    fmt::print("{:<16} {:<8} {}{}\n", i.name, fault::name(i.layer), i.summary, i.one_shot ? " (one-shot)" : "");
+}
+
+void add_target(CLI::App* cmd, Target& t) {
+  cmd->add_option("--iface,-i", t.iface, "Interface (or TAP) the vdrive run to control serves");
+  cmd->add_option("--control", t.control, "Control socket of that vdrive run, if it was given --control");
+  cmd->add_flag("--json", t.json, "Print the server's JSON reply line");
+}
+
+}  // namespace
+
+void add_fault_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("fault", "Inject, clear and list faults in a running vdrive run");
+  cmd->require_subcommand(1);
+
+  auto t = std::make_shared<Target>();
+  auto o = std::make_shared<InjectOptions>();
+  CLI::App* inj = cmd->add_subcommand("inject", "Start a fault now (vdrive fault kinds lists them)");
+  add_target(inj, *t);
+  inj->add_option("kind", o->kind, "Fault kind")->required();
+  inj->add_option("--slave", o->slave, "Slave in cable order, 1 = first (esc, mailbox, drive, plant faults; link_down)");
+  inj->add_option("--duration", o->duration, "How long, e.g. 250ms (default: until cleared)");
+  inj->add_option("--probability", o->probability, "Per frame, 0..1 (drop, corrupt, duplicate, reorder; default 1)");
+  inj->add_option("--direction", o->direction, "both, to_slaves or to_master (wire faults; default both)");
+  inj->add_option("--delay", o->delay, "delay: how long every frame is held, e.g. 2ms");
+  inj->add_option("--count", o->count, "lost_reply, duplicate_reply: how many replies (default 1)");
+  inj->add_option("--abort-code", o->abort_code, "sdo_abort: the abort code, e.g. 0x06020000");
+  inj->add_option("--code", o->code, "alarm: an alarm code of the product");
+  inj->add_option("--position", o->position, "collision: the obstacle's load position");
+  inj->add_option("--load-scale", o->load_scale, "load_change: inertia/mass factor");
+  inj->add_option("--force", o->force, "load_change: added external load (N or N m)");
+  inj->callback([t, o] { inject(*t, *o); });
+
+  auto id = std::make_shared<int>(0);
+  auto all = std::make_shared<bool>(false);
+  CLI::App* clr = cmd->add_subcommand("clear", "End a fault by its id, or all of them");
+  add_target(clr, *t);
+  clr->add_option("id", *id, "Fault id (from inject or list)")->check(CLI::PositiveNumber);
+  clr->add_flag("--all", *all, "End every active fault");
+  clr->callback([t, id, all] { clear(*t, *id, *all); });
+
+  CLI::App* lst = cmd->add_subcommand("list", "Active faults: id, description, time active and left");
+  add_target(lst, *t);
+  lst->callback([t] { list(*t); });
+
+  cmd->add_subcommand("kinds", "The fault catalogue: kind, layer, what it does")->callback(kinds);
+}
+
+}  // namespace vdrive::cli

@@ -1,0 +1,50 @@
+#pragma once
+// What the runtime control channel carries between its thread and the event loop: a request
+// (inject a fault, clear one or all, list them) and its reply. Parsed from and formatted to
+// JSON lines by control_protocol.hpp; carried out by FaultService (fault_service.hpp).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/clock.hpp"
+#include "vdrive/fault/fault_spec.hpp"
+
+namespace vdrive::control {
+
+struct ControlRequest {
+  enum class Op : std::uint8_t { inject, clear, clear_all, list };
+  Op op = Op::list;
+  fault::FaultSpec fault;  // inject
+  int id = 0;              // clear
+  std::uint64_t seq = 0;   // matches a reply to its request (set by FaultService::call)
+};
+
+struct FaultStatus {
+  int id = 0;
+  std::string kind;
+  std::string description;  // fault::describe()
+  Nanos elapsed = 0;
+  Nanos remaining = -1;     // -1: until cleared
+};
+
+struct ControlReply {
+  // Why a request failed: the caller's mistake (exit 2), a peer that may not control this vdrive
+  // (exit 4), or the server (exit 1).
+  enum class Status : std::uint8_t { ok, bad_request, denied, failed };
+  Status status = Status::ok;
+  std::string error;
+  int id = 0;                        // inject: the new fault's id (0 for one-shot faults)
+  int cleared = 0;                   // clear_all: how many
+  std::vector<FaultStatus> faults;   // list
+  std::uint64_t seq = 0;
+  bool ok() const { return status == Status::ok; }
+};
+
+inline ControlReply error_reply(ControlReply::Status status, std::string message) {
+  ControlReply r;
+  r.status = status;
+  r.error = std::move(message);
+  return r;
+}
+
+}  // namespace vdrive::control

@@ -1,0 +1,107 @@
+// Runtime fault control on the event loop's thread. See fault_service.hpp.
+#include "vdrive/control/fault_service.hpp"
+
+#include <fmt/core.h>
+#include <poll.h>
+#include <sys/eventfd.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "common/clock.hpp"
+#include "vdrive/fault/impaired_link.hpp"
+
+namespace vdrive::control {
+namespace {
+constexpr Nanos kNever = std::numeric_limits<Nanos>::max();
+}
+
+FaultService::FaultService(network::Network& network, fault::WireImpairment* wire, fault::ImpairedLink* link)
+    : injector_(network, wire), link_(link) {
+  reply_event_ = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+  if (reply_event_ < 0) throw std::runtime_error(fmt::format("eventfd: {}", std::strerror(errno)));
+}
+
+FaultService::~FaultService() { ::close(reply_event_); }
+
+void FaultService::changed() {
+  if (link_ != nullptr) link_->refresh();
+}
+
+void FaultService::poll(Nanos now) {
+  if (!requests_.empty()) {
+    while (std::optional<ControlRequest> r = requests_.try_pop()) {
+      ControlReply reply = handle(*r, now);
+      reply.seq = r->seq;
+      // The caller waits for one reply at a time, so there is room; if not, it timed out and
+      // no longer waits for this one.
+      (void)replies_.try_push(std::move(reply));
+      const std::uint64_t one = 1;
+      (void)!::write(reply_event_, &one, sizeof one);
+    }
+  }
+  if (injector_.next_deadline() <= now) {
+    injector_.tick(now);
+    changed();
+  }
+}
+
+ControlReply FaultService::handle(const ControlRequest& r, Nanos now) {
+  ControlReply reply;
+  try {
+    switch (r.op) {
+      case ControlRequest::Op::inject:
+        reply.id = injector_.inject(r.fault, now);
+        if (fault::info(r.fault.kind).one_shot) reply.id = 0;
+        break;
+      case ControlRequest::Op::clear:
+        if (!injector_.clear(r.id, now))
+          return error_reply(ControlReply::Status::bad_request, fmt::format("no active fault {}", r.id));
+        break;
+      case ControlRequest::Op::clear_all:
+        reply.cleared = static_cast<int>(injector_.active().size());
+        injector_.clear_all(now);
+        break;
+      case ControlRequest::Op::list:
+        for (const fault::ActiveFault& f : injector_.active()) {
+          reply.faults.push_back({f.id, std::string(fault::info(f.spec.kind).name), fault::describe(f.spec),
+                                  now - f.started, f.ends == kNever ? -1 : std::max<Nanos>(f.ends - now, 0)});
+        }
+        break;
+    }
+  } catch (const fault::FaultError& e) {
+    reply = error_reply(ControlReply::Status::bad_request, e.what());
+  } catch (const std::exception& e) {
+    reply = error_reply(ControlReply::Status::failed, e.what());
+  }
+  changed();
+  return reply;
+}
+
+ControlReply FaultService::call(ControlRequest request, Nanos timeout) {
+  const std::uint64_t seq = next_seq_++;
+  request.seq = seq;
+  if (!requests_.try_push(std::move(request)))
+    return error_reply(ControlReply::Status::failed, "the event loop has too many requests pending");
+  MonotonicClock clock;
+  const Nanos deadline = clock.now() + timeout;
+  for (;;) {
+    while (std::optional<ControlReply> reply = replies_.try_pop()) {
+      if (reply->seq == seq) return std::move(*reply);  // older ones: their caller gave up
+    }
+    const Nanos left = deadline - clock.now();
+    if (left <= 0) {
+      return error_reply(ControlReply::Status::failed,
+                         fmt::format("the event loop did not answer within {} ms", timeout / 1'000'000));
+    }
+    pollfd p{reply_event_, POLLIN, 0};
+    ::poll(&p, 1, static_cast<int>(std::max<Nanos>(left / 1'000'000, 1)));
+    std::uint64_t count = 0;
+    (void)!::read(reply_event_, &count, sizeof count);
+  }
+}
+
+}  // namespace vdrive::control

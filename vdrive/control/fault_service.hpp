@@ -1,0 +1,51 @@
+#pragma once
+// FaultService: runtime fault control on the event loop's thread. Owns the FaultInjector of a
+// served network; other threads (the control socket's) hand it requests with call(), which the
+// loop picks up in poll() through a lock-free SPSC queue and answers through another, waking
+// the caller with an eventfd. poll() with nothing pending is one atomic load plus a deadline
+// compare; faults with a duration end at their deadline (next_deadline() joins the loop's).
+// After every change the ImpairedLink (if any) re-reads the wire settings, so a clean wire
+// costs the frame path one branch.
+#include <cstdint>
+
+#include "vdrive/control/control_request.hpp"
+#include "vdrive/fault/fault_injector.hpp"
+#include "vdrive/runtime/loop_service.hpp"
+#include "vdrive/runtime/spsc_queue.hpp"
+
+namespace vdrive::fault { class ImpairedLink; class WireImpairment; }
+
+namespace vdrive::control {
+
+class FaultService final : public runtime::LoopService {
+public:
+  // `wire` and `link` may be null (then wire faults other than link_down are refused).
+  FaultService(network::Network& network, fault::WireImpairment* wire, fault::ImpairedLink* link);
+  ~FaultService() override;
+  FaultService(const FaultService&) = delete;
+  FaultService& operator=(const FaultService&) = delete;
+
+  // Loop thread.
+  void poll(Nanos now) override;
+  Nanos next_deadline() const override { return injector_.next_deadline(); }
+  // Carries out one request now (poll() does this for each queued one).
+  ControlReply handle(const ControlRequest& request, Nanos now);
+
+  // Any one other thread at a time: queues `request` for the loop and waits up to `timeout`
+  // for its reply; a `failed` reply if the loop is busy or does not answer in time.
+  ControlReply call(ControlRequest request, Nanos timeout);
+
+  const fault::FaultInjector& injector() const { return injector_; }
+
+private:
+  void changed();
+
+  fault::FaultInjector injector_;
+  fault::ImpairedLink* link_;
+  runtime::SpscQueue<ControlRequest, 4> requests_;
+  runtime::SpscQueue<ControlReply, 4> replies_;
+  int reply_event_ = -1;  // eventfd: the loop signals a reply
+  std::uint64_t next_seq_ = 1;
+};
+
+}  // namespace vdrive::control
