@@ -24,27 +24,6 @@ constexpr std::uint16_t kPdoOut[] = {0x1600};
 constexpr std::uint16_t kPdoIn[] = {0x1A00};
 constexpr std::int8_t kCsp = 8;
 
-template <typename T>
-T get(std::span<const std::uint8_t> image, std::uint32_t offset) {
-  T v{};
-  std::memcpy(&v, image.data() + offset, sizeof(T));
-  return v;
-}
-template <typename T>
-void put(std::span<std::uint8_t> image, std::uint32_t offset, T v) {
-  std::memcpy(image.data() + offset, &v, sizeof(T));
-}
-
-// Byte offset of `object` in one direction of a slave's mapping, or -1.
-long find(const std::vector<PdoMapping>& pdos, std::uint32_t base, std::uint16_t object) {
-  std::uint32_t bit = 0;
-  for (const PdoMapping& p : pdos)
-    for (const std::uint32_t e : p.entries) {
-      if ((e >> 16) == object && (e & 0xFF00) == 0) return static_cast<long>(base + bit / 8);
-      bit += e & 0xFF;
-    }
-  return -1;
-}
 }  // namespace
 
 SineProgram::SineProgram(const SineProgramOptions& options) : options_(options) {}
@@ -101,9 +80,10 @@ void SineProgram::locate(std::span<std::uint8_t> image) {
     if (!c.mapped) continue;
     const SlaveProcessData& pd = master_->slaves()[i].process_data;
     const std::uint32_t out = pd.output_logical - start, in = pd.input_logical - start;
-    const long offsets[] = {find(pd.outputs, out, 0x6040), find(pd.outputs, out, 0x6060), find(pd.outputs, out, 0x607A),
-                            find(pd.inputs, in, 0x6041),   find(pd.inputs, in, 0x6061),   find(pd.inputs, in, 0x6064),
-                            find(pd.inputs, in, 0x60F4),   find(pd.inputs, in, 0x603F)};
+    auto rx = [&](std::uint16_t object) { return pdo_entry_offset(pd.outputs, out, object); };
+    auto tx = [&](std::uint16_t object) { return pdo_entry_offset(pd.inputs, in, object); };
+    const long offsets[] = {rx(0x6040), rx(0x6060), rx(0x607A), tx(0x6041),
+                            tx(0x6061), tx(0x6064), tx(0x60F4), tx(0x603F)};
     for (const long o : offsets)
       if (o < 0 || static_cast<std::size_t>(o) + 4 > image.size() + 2) c.mapped = false;
     if (!c.mapped) {
@@ -128,8 +108,8 @@ void SineProgram::outputs(std::span<std::uint8_t> image) {
     else if ((s & 0x006F) == 0x0021) cw = 0x0007;                    // ready -> switch on
     else if ((s & 0x006F) == 0x0023 || (s & 0x006F) == 0x0027) cw = 0x000F;  // switched on -> enable
     c.last_cw = cw;
-    put<std::uint16_t>(image, c.cw, cw);
-    put<std::int8_t>(image, c.mode, kCsp);
+    image_put<std::uint16_t>(image, c.cw, cw);
+    image_put<std::int8_t>(image, c.mode, kCsp);
     std::int32_t target = c.position;  // until enabled, 607Ah follows 6064h (A6B L16813-L16819)
     if (c.enabled_at >= 0) {
       const Nanos t = c.now - c.enabled_at - options_.settle;
@@ -143,7 +123,7 @@ void SineProgram::outputs(std::span<std::uint8_t> image) {
         if (t > options_.motion) c.finished = true;
       }
     }
-    put<std::int32_t>(image, c.target, target);
+    image_put<std::int32_t>(image, c.target, target);
   }
 }
 
@@ -152,11 +132,11 @@ void SineProgram::inputs(std::span<std::uint8_t> image) {
     Channel& c = channels_[i];
     if (!c.mapped) continue;
     DriveResult& r = results_[i];
-    c.status_value = get<std::uint16_t>(image, c.status);
-    c.position = get<std::int32_t>(image, c.actual);
+    c.status_value = image_get<std::uint16_t>(image, c.status);
+    c.position = image_get<std::int32_t>(image, c.actual);
     r.statusword = c.status_value;
-    r.error_code = get<std::uint16_t>(image, c.error);
-    const bool enabled = (c.status_value & 0x006F) == 0x0027 && get<std::int8_t>(image, c.mode_display) == kCsp;
+    r.error_code = image_get<std::uint16_t>(image, c.error);
+    const bool enabled = (c.status_value & 0x006F) == 0x0027 && image_get<std::int8_t>(image, c.mode_display) == kCsp;
     if (enabled && c.enabled_at < 0) {
       c.enabled_at = c.now;
       c.start = c.position;
@@ -164,7 +144,7 @@ void SineProgram::inputs(std::span<std::uint8_t> image) {
     }
     if (r.enabled && (c.status_value & 0x0008)) r.faulted = true;
     if (c.enabled_at >= 0 && c.now - c.enabled_at > options_.settle && !c.finished) {
-      const std::int64_t fe = std::abs(static_cast<std::int64_t>(get<std::int32_t>(image, c.following)));
+      const std::int64_t fe = std::abs(static_cast<std::int64_t>(image_get<std::int32_t>(image, c.following)));
       r.max_following_error = std::max(r.max_following_error, fe);
       ++r.samples;
     }

@@ -170,4 +170,14 @@ ProcessImageLayout configure_process_data(Master& master, std::vector<std::strin
   return layout;
 }
 
+long pdo_entry_offset(const std::vector<PdoMapping>& pdos, std::uint32_t base, std::uint16_t object) {
+  std::uint32_t bit = 0;
+  for (const PdoMapping& p : pdos)
+    for (const std::uint32_t e : p.entries) {
+      if ((e >> 16) == object && (e & 0xFF00) == 0) return static_cast<long>(base + bit / 8);
+      bit += e & 0xFF;
+    }
+  return -1;
+}
+
 }  // namespace vdrive::master

@@ -14,6 +14,7 @@
 // Remapping: assign_pdos()/map_pdo() write 1C12h/1C13h or a mapping object the CiA 301 way
 // (subindex 0 to 0, the entries, subindex 0 to the count); call before configure_process_data().
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
@@ -58,6 +59,21 @@ void sii_pdo_configuration(const SlaveInfo& info, SlaveProcessData& out);
 // Remapping: 1C12h/1C13h := pdos; a mapping object := entries.
 void assign_pdos(SdoClient& sdo, std::uint16_t assign_object, std::span<const std::uint16_t> pdos);
 void map_pdo(SdoClient& sdo, std::uint16_t pdo, std::span<const std::uint32_t> entries);
+
+// Byte offset of `object` (subindex 0) among `pdos` laid out from byte `base` of the image, or -1.
+long pdo_entry_offset(const std::vector<PdoMapping>& pdos, std::uint32_t base, std::uint16_t object);
+
+// A little-endian value at `offset` of the process image.
+template <typename T>
+T image_get(std::span<const std::uint8_t> image, std::uint32_t offset) {
+  T v{};
+  std::memcpy(&v, image.data() + offset, sizeof(T));
+  return v;
+}
+template <typename T>
+void image_put(std::span<std::uint8_t> image, std::uint32_t offset, T v) {
+  std::memcpy(image.data() + offset, &v, sizeof(T));
+}
 
 // Configures SM2/SM3 and FMMUs of every slave (in Pre-Op) and returns the image layout. Each
 // slave's PDOs come from CoE when it has CoE and answers, otherwise from its SII; `notes` gets one

@@ -78,13 +78,7 @@ int FaultInjector::inject(const FaultSpec& spec, Nanos now) {
   }
   ActiveFault f{next_id_++, spec, now, spec.duration > 0 ? now + spec.duration : kNever};
   active_.push_back(f);
-  switch (info(spec.kind).layer) {
-    case Layer::wire: spec.kind == FaultKind::link_down ? apply_cables() : apply_wire(); break;
-    case Layer::esc: apply_esc(spec.slave); break;
-    case Layer::mailbox: break;
-    case Layer::drive: set_drive_cause(spec, true, now); break;
-    case Layer::plant: apply_plant(spec.slave); break;
-  }
+  apply_layer(spec, true, now);
   return f.id;
 }
 
@@ -189,11 +183,15 @@ void FaultInjector::apply_plant(int slave) {
 void FaultInjector::end(std::size_t index, Nanos now) {
   const FaultSpec spec = active_[index].spec;
   active_.erase(active_.begin() + static_cast<std::ptrdiff_t>(index));
+  apply_layer(spec, false, now);
+}
+
+void FaultInjector::apply_layer(const FaultSpec& spec, bool started, Nanos now) {
   switch (info(spec.kind).layer) {
     case Layer::wire: spec.kind == FaultKind::link_down ? apply_cables() : apply_wire(); break;
     case Layer::esc: apply_esc(spec.slave); break;
     case Layer::mailbox: break;
-    case Layer::drive: set_drive_cause(spec, false, now); break;
+    case Layer::drive: set_drive_cause(spec, started, now); break;
     case Layer::plant: apply_plant(spec.slave); break;
   }
 }

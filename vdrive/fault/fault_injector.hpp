@@ -56,6 +56,8 @@ private:
   void check(const FaultSpec& spec) const;
   void apply_one_shot(const FaultSpec& spec, Nanos now);
   void set_drive_cause(const FaultSpec& spec, bool active, Nanos now);
+  // After `spec` started or ended: its layer's settings from the faults now active.
+  void apply_layer(const FaultSpec& spec, bool started, Nanos now);
   // Recomputes a layer's settings from the faults still active.
   void apply_wire();
   void apply_cables();

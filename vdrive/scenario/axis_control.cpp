@@ -33,26 +33,6 @@ constexpr std::int8_t kPp = 1;
 bool faulted(std::uint16_t s) { return (s & 0x0008) != 0; }
 bool operation_enabled(std::uint16_t s) { return (s & 0x006F) == 0x0027; }
 
-template <typename T>
-T get(std::span<const std::uint8_t> image, std::uint32_t offset) {
-  T v{};
-  std::memcpy(&v, image.data() + offset, sizeof(T));
-  return v;
-}
-template <typename T>
-void put(std::span<std::uint8_t> image, std::uint32_t offset, T v) {
-  std::memcpy(image.data() + offset, &v, sizeof(T));
-}
-
-long find(const std::vector<master::PdoMapping>& pdos, std::uint32_t base, std::uint16_t object) {
-  std::uint32_t bit = 0;
-  for (const master::PdoMapping& p : pdos)
-    for (const std::uint32_t e : p.entries) {
-      if ((e >> 16) == object && (e & 0xFF00) == 0) return static_cast<long>(base + bit / 8);
-      bit += e & 0xFF;
-    }
-  return -1;
-}
 
 }  // namespace
 
@@ -67,9 +47,9 @@ void AxisControl::map_pdos(master::Master& m, std::size_t slave) {
 }
 
 bool AxisControl::locate(const master::SlaveProcessData& pd, std::uint32_t out, std::uint32_t in, std::size_t size) {
-  const long o[] = {find(pd.outputs, out, 0x6040), find(pd.outputs, out, 0x6060), find(pd.outputs, out, 0x607A),
-                    find(pd.outputs, out, 0x60FF), find(pd.outputs, out, 0x6071), find(pd.inputs, in, 0x6041),
-                    find(pd.inputs, in, 0x6064)};
+  const long o[] = {master::pdo_entry_offset(pd.outputs, out, 0x6040), master::pdo_entry_offset(pd.outputs, out, 0x6060), master::pdo_entry_offset(pd.outputs, out, 0x607A),
+                    master::pdo_entry_offset(pd.outputs, out, 0x60FF), master::pdo_entry_offset(pd.outputs, out, 0x6071), master::pdo_entry_offset(pd.inputs, in, 0x6041),
+                    master::pdo_entry_offset(pd.inputs, in, 0x6064)};
   mapped_ = std::all_of(std::begin(o), std::end(o), [&](long v) { return v >= 0 && static_cast<std::size_t>(v) + 2 <= size; });
   if (!mapped_) return false;
   cw_ = o[0], mode_ = o[1], target_position_ = o[2], target_velocity_ = o[3], target_torque_ = o[4];
@@ -161,17 +141,17 @@ void AxisControl::outputs(std::span<std::uint8_t> image, Nanos now) {
     position = motion_ ? static_cast<std::int32_t>(std::lround(x)) : position_target_;
     if (motion_) position_target_ = position;
   }
-  put<std::uint16_t>(image, cw_, c);
-  put<std::int8_t>(image, mode_, mode_value_);
-  put<std::int32_t>(image, target_position_, position);
-  put<std::int32_t>(image, target_velocity_, velocity_target_);
-  put<std::int16_t>(image, target_torque_, torque_target_);
+  master::image_put<std::uint16_t>(image, cw_, c);
+  master::image_put<std::int8_t>(image, mode_, mode_value_);
+  master::image_put<std::int32_t>(image, target_position_, position);
+  master::image_put<std::int32_t>(image, target_velocity_, velocity_target_);
+  master::image_put<std::int16_t>(image, target_torque_, torque_target_);
 }
 
 void AxisControl::inputs(std::span<const std::uint8_t> image) {
   if (!mapped_) return;
-  status_ = get<std::uint16_t>(image, status_at_);
-  position_ = get<std::int32_t>(image, position_at_);
+  status_ = master::image_get<std::uint16_t>(image, status_at_);
+  position_ = master::image_get<std::int32_t>(image, position_at_);
 }
 
 }  // namespace vdrive::scenario
