@@ -134,6 +134,22 @@ expect:
   EXPECT_TRUE(r.expectations[0].passed) << "what was checked before the stop still counts";
 }
 
+TEST(ScenarioSteps, SdoReadWithAConditionIsReportedAsAnExpectation) {
+  const Scenario s = parse_scenario(R"(duration: 300ms
+segment: {slaves: [{product: a6b}]}
+timeline:
+  - {name: vendor, at: {on: op}, sdo_read: {slave: 1, index: 0x1018, subindex: 1, equals: 0x066F}}
+  - {at: {on: op}, sdo_read: {slave: 1, index: 0x1018, subindex: 1, equals: 5}}
+)", "r.yaml");
+  const ScenarioResult r = run_scenario(s);
+  ASSERT_EQ(r.expectations.size(), 2u);
+  EXPECT_EQ(r.expectations[0].name, "vendor");
+  EXPECT_TRUE(r.expectations[0].passed) << r.expectations[0].message;
+  EXPECT_FALSE(r.expectations[1].passed);
+  EXPECT_EQ(r.expectations[1].message, "read 1647, expected == 5");
+  EXPECT_EQ(r.expectations[1].line, 5);
+}
+
 TEST(ScenarioRunErrors, AnObjectTheProductDoesNotHaveIsNamed) {
   const Scenario s = parse_scenario("duration: 1s\nsegment: {slaves: [{product: ds1000a}]}\nexpect:\n  - {slave: 1, object: 0x3742, equals: 1, at: 1s}\n", "x.yaml");
   const ScenarioResult r = run_scenario(s);

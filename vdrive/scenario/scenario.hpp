@@ -34,10 +34,26 @@ struct TimePoint {
   int line = 0;
 };
 
+struct Condition {
+  std::optional<std::int64_t> equals;
+  std::optional<std::int64_t> mask;      // applied before equals
+  std::optional<double> min, max;        // inclusive
+  std::optional<double> near;            // with tolerance: |value - near| <= tolerance
+  double tolerance = 0.0;
+};
+
 enum class AlTarget : std::uint8_t { init = 1, preop = 2, boot = 3, safeop = 4, op = 8 };
 
 struct StateAction { int slave = 0; AlTarget state = AlTarget::op; };   // slave 0: all
 struct SdoWriteAction { int slave = 0; std::uint16_t index = 0; std::uint8_t subindex = 0; std::int64_t value = 0; };
+// Reads an object over CoE; with a condition, the value read is checked like an expectation
+// (reported under the step's name).
+struct SdoReadAction {
+  int slave = 0;
+  std::uint16_t index = 0;
+  std::uint8_t subindex = 0;
+  std::optional<Condition> expect;
+};
 struct ControlwordAction { int slave = 0; std::uint16_t value = 0; };
 struct ModeAction { int slave = 0; std::int8_t mode = 0; };
 // Walks the power state machine to Operation enabled in `mode` through the cyclic controlword
@@ -65,7 +81,7 @@ struct FaultAction { fault::FaultSpec fault; std::string id; };  // id: for clea
 struct ClearFaultAction { std::string id; };                       // "" = every active fault
 struct AcknowledgeAction { int slave = 0; };                       // AL error acknowledge (0x0120 bit 4)
 
-using Action = std::variant<StateAction, SdoWriteAction, ControlwordAction, ModeAction, EnableAction, DisableAction,
+using Action = std::variant<StateAction, SdoWriteAction, SdoReadAction, ControlwordAction, ModeAction, EnableAction, DisableAction,
                             TargetAction, MotionAction, FaultAction, ClearFaultAction, AcknowledgeAction>;
 
 struct Step {
@@ -85,13 +101,6 @@ struct Probe {
   std::uint8_t size = 2;        // register bytes (1, 2 or 4), little-endian
 };
 
-struct Condition {
-  std::optional<std::int64_t> equals;
-  std::optional<std::int64_t> mask;      // applied before equals
-  std::optional<double> min, max;        // inclusive
-  std::optional<double> near;            // with tolerance: |value - near| <= tolerance
-  double tolerance = 0.0;
-};
 
 struct Expectation {
   std::string name;

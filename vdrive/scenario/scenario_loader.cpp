@@ -237,6 +237,24 @@ fault::FaultSpec fault_of(Map& m, const Context& c, std::string& id) {
   return f;
 }
 
+// equals (with mask), min, max, near with tolerance: at least one.
+Condition condition_of(Map& m) {
+  Condition k;
+  if (m.has("equals")) k.equals = m.integer("equals", std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max());
+  if (m.has("mask")) k.mask = m.integer("mask", 0, std::numeric_limits<std::int64_t>::max());
+  if (m.has("min")) k.min = m.real("min");
+  if (m.has("max")) k.max = m.real("max");
+  if (m.has("near")) k.near = m.real("near");
+  if (m.has("tolerance")) {
+    k.tolerance = m.real("tolerance");
+    if (!k.near) m.fail("tolerance", "goes with near");
+    if (k.tolerance < 0) m.fail("tolerance", "must not be negative");
+  }
+  if (k.mask && !k.equals) m.fail("mask", "goes with equals");
+  if (!k.equals && !k.min && !k.max && !k.near) m.fail("", "an expectation needs a condition: equals, min, max or near");
+  return k;
+}
+
 SdoWriteAction sdo_write_of(Map& m, const Context& c) {
   SdoWriteAction a;
   a.slave = slave_of(m, c, false);
@@ -248,7 +266,7 @@ SdoWriteAction sdo_write_of(Map& m, const Context& c) {
 }
 
 Action action_of(Map& step, const Context& c) {
-  static const std::string_view kActions[] = {"state", "sdo_write", "controlword", "mode", "enable", "disable",
+  static const std::string_view kActions[] = {"state", "sdo_write", "sdo_read", "controlword", "mode", "enable", "disable",
                                               "target", "motion", "fault", "clear_fault", "acknowledge"};
   std::string_view which;
   for (const std::string_view a : kActions) {
@@ -256,7 +274,7 @@ Action action_of(Map& step, const Context& c) {
     if (!which.empty()) step.fail(a, fmt::format("a step has one action; this one has \"{}\" and \"{}\"", which, a));
     which = a;
   }
-  if (which.empty()) step.fail("", "a step needs one action: state, sdo_write, controlword, mode, enable, disable, target, motion, fault, clear_fault or acknowledge");
+  if (which.empty()) step.fail("", "a step needs one action: state, sdo_write, sdo_read, controlword, mode, enable, disable, target, motion, fault, clear_fault or acknowledge");
   Map m = step.map(which);
   if (which == "state") {
     StateAction a{slave_of(m, c, true), state_of(m, "to")};
@@ -264,6 +282,15 @@ Action action_of(Map& step, const Context& c) {
     return a;
   }
   if (which == "sdo_write") return sdo_write_of(m, c);
+  if (which == "sdo_read") {
+    SdoReadAction a;
+    a.slave = slave_of(m, c, false);
+    a.index = static_cast<std::uint16_t>(m.integer("index", 0x1000, 0xFFFF));
+    a.subindex = static_cast<std::uint8_t>(m.integer_or("subindex", 0, 255, 0));
+    if (m.has("equals") || m.has("min") || m.has("max") || m.has("near")) a.expect = condition_of(m);
+    m.finish();
+    return a;
+  }
   if (which == "controlword") {
     ControlwordAction a{slave_of(m, c, false), static_cast<std::uint16_t>(m.integer("value", 0, 0xFFFF))};
     m.finish();
@@ -379,18 +406,7 @@ Expectation expectation_of(Map& m, const Context& c, std::size_t i) {
   } else if (e.probe.kind == Probe::Kind::al_status_code) {
     k.equals = m.integer("al_status_code", 0, 0xFFFF);
   } else {
-    if (m.has("equals")) k.equals = m.integer("equals", std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max());
-    if (m.has("mask")) k.mask = m.integer("mask", 0, std::numeric_limits<std::int64_t>::max());
-    if (m.has("min")) k.min = m.real("min");
-    if (m.has("max")) k.max = m.real("max");
-    if (m.has("near")) k.near = m.real("near");
-    if (m.has("tolerance")) {
-      k.tolerance = m.real("tolerance");
-      if (!k.near) m.fail("tolerance", "goes with near");
-      if (k.tolerance < 0) m.fail("tolerance", "must not be negative");
-    }
-    if (k.mask && !k.equals) m.fail("mask", "goes with equals");
-    if (!k.equals && !k.min && !k.max && !k.near) m.fail("", "an expectation needs a condition: equals, min, max or near");
+    k = condition_of(m);
   }
   const int timings = int(m.has("at")) + int(m.has("by")) + int(m.has("always"));
   if (timings != 1) m.fail("", "an expectation needs exactly one of at, by or always");

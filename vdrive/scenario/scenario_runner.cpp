@@ -96,6 +96,7 @@ public:
     }
     for (ExpectationCheck& c : checks_) c.finish(clock_->now(), events_);
     for (const ExpectationCheck& c : checks_) result_.expectations.push_back(c.result());
+    for (ExpectationResult& r : step_results_) result_.expectations.push_back(std::move(r));
     if (!s_.expect_stop.empty()) {
       ExpectationResult stop;
       stop.name = "the run stops: " + s_.expect_stop;
@@ -269,6 +270,7 @@ private:
   }
 
   void perform(const Step& st) {
+    current_step_ = &st;
     const Nanos now = clock_->now();
     std::visit([&](const auto& a) { act(a, now); }, st.action);
   }
@@ -288,6 +290,35 @@ private:
     }
   }
   void act(const SdoWriteAction& a, Nanos) { sdo_write(a); }
+  void act(const SdoReadAction& a, Nanos now) {
+    const auto i = static_cast<std::size_t>(a.slave - 1);
+    const od::EntryDesc* entry = network_.firmware(i).objects().dictionary().find(a.index, a.subindex);
+    if (!entry) throw RunError(fmt::format("sdo_read: slave {} ({}) has no object {:04X}h:{:02X}", a.slave, network_.profile(i).id, a.index, a.subindex));
+    std::string outcome;
+    std::optional<std::int64_t> value;
+    try {
+      const std::vector<std::uint8_t> bytes = master("sdo_read").sdo(i).upload(a.index, a.subindex);
+      std::uint64_t raw = 0;
+      const std::size_t n = std::min<std::size_t>(bytes.size(), 8);
+      for (std::size_t b = 0; b < n; ++b) raw |= static_cast<std::uint64_t>(bytes[b]) << (8 * b);
+      if (n > 0 && n < 8 && od::is_signed(entry->type) && ((raw >> (8 * n - 1)) & 1u)) raw |= ~std::uint64_t{0} << (8 * n);
+      value = static_cast<std::int64_t>(raw);
+      outcome = fmt::format("{}", *value);
+    } catch (const master::SdoAbort& e) {
+      outcome = fmt::format("aborted: {}", e.what());
+    }
+    say(fmt::format("slave {}: {:04X}h:{:02X} = {}", a.slave, a.index, a.subindex, outcome));
+    if (!a.expect) return;
+    ExpectationResult r;
+    r.name = current_step_->name.empty() ? fmt::format("sdo_read {:04X}h:{:02X} (line {})", a.index, a.subindex, current_step_->line)
+                                         : current_step_->name;
+    r.line = current_step_->line;
+    r.decided = true;
+    r.time = now;
+    r.passed = value && holds(*a.expect, *value);
+    r.message = r.passed ? fmt::format("read {}", outcome) : fmt::format("read {}, expected {}", outcome, describe(*a.expect));
+    step_results_.push_back(std::move(r));
+  }
   void act(const ControlwordAction& a, Nanos) {
     axis(a.slave, "controlword").set_controlword(a.value);
     say(fmt::format("slave {}: 6040h := 0x{:04X}", a.slave, a.value));
@@ -470,6 +501,8 @@ private:
   std::vector<AxisControl> axes_;
   std::vector<bool> ran_;
   std::vector<ExpectationCheck> checks_;
+  std::vector<ExpectationResult> step_results_;  // sdo_read steps with a condition
+  const Step* current_step_ = nullptr;
   std::map<std::string, int> fault_ids_;
   master::ProcessImageLayout layout_;
   std::unique_ptr<master::CyclicTask> task_;
