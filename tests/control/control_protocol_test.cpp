@@ -115,3 +115,21 @@ TEST(ControlProtocol, RepliesRoundTrip) {
 
 }  // namespace
 }  // namespace vdrive::control
+
+namespace vdrive::control {
+namespace {
+
+TEST(ControlProtocol, BadBytesInARequestStillGetAJsonReply) {
+  std::string message;
+  try {
+    parse_request("{\"op\":\"\xff\xfe\"}");
+  } catch (const ProtocolError& e) {
+    message = e.what();
+  }
+  ASSERT_FALSE(message.empty());
+  const std::string line = format_reply(error_reply(ControlReply::Status::bad_request, message));
+  EXPECT_EQ(parse_reply(line).status, ControlReply::Status::bad_request);
+}
+
+}  // namespace
+}  // namespace vdrive::control

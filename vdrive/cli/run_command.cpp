@@ -46,6 +46,7 @@ struct RunOptions {
   std::vector<std::string> plants;  // "N:FILE": slave N (cable order, from 0) moves the plant in FILE
   std::string control;              // runtime control socket; empty: default_control_path()
   std::uint64_t fault_seed = 1;     // wire impairment's generator
+  bool no_control = false;
 };
 
 // Runtime control: a request line from the socket's thread -> the loop -> a reply line.
@@ -54,7 +55,9 @@ std::string answer(control::FaultService& service, std::string_view line) {
   try {
     const control::ControlRequest request = control::parse_request(line);
     reply = service.call(request, 2'000'000'000);
-    if (reply.ok() && request.op == control::ControlRequest::Op::inject)
+    if (reply.ok() && request.op == control::ControlRequest::Op::inject && reply.id == 0)
+      spdlog::info("one-shot fault applied: {}", fault::describe(request.fault));
+    else if (reply.ok() && request.op == control::ControlRequest::Op::inject)
       spdlog::info("fault {} injected: {}", reply.id, fault::describe(request.fault));
     else if (reply.ok() && request.op == control::ControlRequest::Op::clear)
       spdlog::info("fault {} cleared", request.id);
@@ -186,21 +189,28 @@ void run(const RunOptions& o) {
   fault::WireImpairment wire(o.fault_seed);
   fault::ImpairedLink impaired(*link, wire, *network, clock);
   control::FaultService faults(*network, &wire, &impaired);
-  const std::unique_ptr<control::ControlServer> control = open_control(o, faults);
+  const std::unique_ptr<control::ControlServer> control = o.no_control ? nullptr : open_control(o, faults);
 
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
   spdlog::info("serving {} drive(s) on {}: {} (hop delay {} ns{}); SIGINT/SIGTERM stops",
                o.drives.size(), where, fmt::join(o.drives, ", "), o.hop_delay,
                o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
-  spdlog::info("fault control on {}", control->path());
+  if (control) spdlog::info("fault control on {}", control->path());
   runtime::LoopCounters counters;
   try {
-    runtime::serve(*network, impaired, clock, stop, counters, &faults);
+    runtime::serve(*network, impaired, clock, stop, counters, control ? &faults : nullptr);
   } catch (const link::LinkError& e) {  // the interface was removed while serving
     throw CliError(exit_code_for(e.kind()), e.what());
   }
   spdlog::info("stopped: {} frames in, {} out, {} dropped, {} send failures", counters.frames_in.load(),
                counters.frames_out.load(), counters.dropped.load(), counters.send_failed.load());
+  for (const fault::Direction d : {fault::Direction::to_slaves, fault::Direction::to_master}) {
+    const fault::WireImpairment::Counters& c = wire.counters(d);
+    if (c.dropped + c.corrupted + c.duplicated + c.reordered == 0) continue;
+    spdlog::info("wire faults {}: {} dropped, {} corrupted, {} duplicated, {} reordered",
+                 d == fault::Direction::to_slaves ? "to the slaves" : "to the master", c.dropped, c.corrupted,
+                 c.duplicated, c.reordered);
+  }
 }
 
 }  // namespace
@@ -227,9 +237,10 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--rt-priority", o->rt_priority,
                   "Serve with SCHED_FIFO priority 1..99 and locked memory (default: normal)")
       ->check(CLI::Range(1, 99));
-  cmd->add_option("--control", o->control,
+  CLI::Option* control = cmd->add_option("--control", o->control,
                   "Runtime fault control socket (default $XDG_RUNTIME_DIR/vdrive/IFACE.sock, /run/vdrive/IFACE.sock "
                   "for root, else /tmp/vdrive-UID/IFACE.sock); see vdrive fault");
+  cmd->add_flag("--no-control", o->no_control, "Serve without the runtime control socket")->excludes(control);
   cmd->add_option("--fault-seed", o->fault_seed, "Seed of the random wire faults (drop, corrupt, ...; default 1)");
   cmd->add_flag("--no-qdisc-bypass", o->no_qdisc_bypass,
                 "Send through the qdisc layer (so tc sees replies); default bypasses it");

@@ -185,7 +185,7 @@ std::string format_reply(const ControlReply& reply) {
   if (!reply.ok()) {
     j["status"] = status_name(reply.status);
     j["error"] = reply.error;
-    return j.dump();
+    return j.dump(-1, ' ', false, json::error_handler_t::replace);  // a message may quote bad bytes
   }
   if (reply.id != 0) j["id"] = reply.id;
   j["cleared"] = reply.cleared;
@@ -196,7 +196,7 @@ std::string format_reply(const ControlReply& reply) {
     faults.push_back(std::move(o));
   }
   j["faults"] = std::move(faults);
-  return j.dump();
+  return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 ControlReply parse_reply(std::string_view line) {

@@ -178,7 +178,13 @@ void ControlServer::serve_one(int client) {
   if (!read_line(client, line, kClientTimeoutMs)) return;
   // The line is read (and ignored) first even from a refused peer, so its send cannot fail.
   const bool permitted = peer.uid == ::geteuid() || peer.uid == 0;
-  write_all(client, (permitted ? handler_(line) : refuser_(peer.uid)) + "\n");
+  std::string reply;
+  try {
+    reply = permitted ? handler_(line) : refuser_(peer.uid);
+  } catch (const std::exception&) {  // never let one request end the server (and vdrive)
+    reply = R"({"ok":false,"status":"failed","error":"vdrive could not answer this request"})";
+  }
+  write_all(client, reply + "\n");
 }
 
 std::string control_call(const std::string& path, std::string_view line, Nanos timeout) {
