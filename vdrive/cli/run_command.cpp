@@ -28,6 +28,7 @@
 #include "vdrive/network/network.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/runtime/loop_waker.hpp"
 #include "vdrive/runtime/realtime.hpp"
 #include "vdrive/runtime/stop_signal.hpp"
 
@@ -189,6 +190,8 @@ void run(const RunOptions& o) {
   fault::WireImpairment wire(o.fault_seed);
   fault::ImpairedLink impaired(*link, wire, *network, clock);
   control::FaultService faults(*network, &wire, &impaired);
+  const runtime::LoopWaker waker;  // this thread serves: requests cut its wait short
+  faults.set_wake([&waker] { waker.wake(); });
   const std::unique_ptr<control::ControlServer> control = o.no_control ? nullptr : open_control(o, faults);
 
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();

@@ -86,6 +86,7 @@ ControlReply FaultService::call(ControlRequest request, Nanos timeout) {
   request.seq = seq;
   if (!requests_.try_push(std::move(request)))
     return error_reply(ControlReply::Status::failed, "the event loop has too many requests pending");
+  if (wake_) wake_();
   MonotonicClock clock;
   const Nanos deadline = clock.now() + timeout;
   for (;;) {

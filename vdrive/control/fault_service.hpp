@@ -7,6 +7,7 @@
 // After every change the ImpairedLink (if any) re-reads the wire settings, so a clean wire
 // costs the frame path one branch.
 #include <cstdint>
+#include <functional>
 
 #include "vdrive/control/control_request.hpp"
 #include "vdrive/fault/fault_injector.hpp"
@@ -36,6 +37,9 @@ public:
   ControlReply call(ControlRequest request, Nanos timeout);
 
   const fault::FaultInjector& injector() const { return injector_; }
+  // What call() does after queueing a request to cut the loop's wait short (runtime::LoopWaker).
+  // Set before the loop and the control thread start.
+  void set_wake(std::function<void()> wake) { wake_ = std::move(wake); }
 
 private:
   void changed();
@@ -45,6 +49,7 @@ private:
   runtime::SpscQueue<ControlRequest, 4> requests_;
   runtime::SpscQueue<ControlReply, 4> replies_;
   int reply_event_ = -1;  // eventfd: the loop signals a reply
+  std::function<void()> wake_;
   std::uint64_t next_seq_ = 1;
 };
 

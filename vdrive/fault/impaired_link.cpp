@@ -71,7 +71,11 @@ std::size_t ImpairedLink::receive_impaired(std::span<std::uint8_t> buf, Nanos ti
     const Nanos wait = next == kNever ? -1 : std::max<Nanos>(next - now, 0);
     const std::size_t n = inner_.receive(buf, wait);
     asked = true;
-    if (n != 0) wire_.push(Direction::to_slaves, buf.first(n), clock_.now());
+    if (n != 0) {
+      wire_.push(Direction::to_slaves, buf.first(n), clock_.now());
+    } else if (wait > 0 && clock_.now() < now + wait) {
+      return 0;  // interrupted (a stop or wake-up signal): let the caller look at its flags
+    }
   }
 }
 
