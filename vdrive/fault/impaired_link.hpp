@@ -4,7 +4,8 @@
 // event loop sees them; replies sent back pass the to_master stage. Held frames (delay,
 // reorder) come out at their time: receive() never waits past the next release, and sends due
 // replies whenever it runs. A frame corrupted to_slaves goes to Segment::process_corrupted()
-// (the ESCs count it) and is not returned.
+// (the ESCs count it) and is not returned. Like the inner link, receive() returns 0 early when
+// its wait is interrupted by a signal (stop, runtime::LoopWaker).
 //
 // With a clean wire and nothing held, receive() and send() are the inner link's after one
 // branch on a cached flag. Whoever changes the impairment's settings (FaultInjector, via the
