@@ -10,7 +10,7 @@ namespace vdrive::plant {
 
 struct AxisFaults {
   bool jam = false;                       // the load is seized: it cannot move (a stiff lock at its current position)
-  std::optional<double> obstacle;         // collision: a hard stop appears at this load position (load units), on the side the load approaches from
+  std::optional<double> obstacle{};       // collision: a hard stop appears at this load position (load units), on the side the load approaches from
   double load_scale = 1.0;                // load change: the load's inertia/mass multiplied by this
   double added_force = 0.0;               // load change: extra external force/torque on the load
   bool brake_failure = false;             // the holding brake does not hold when engaged

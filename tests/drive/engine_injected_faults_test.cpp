@@ -168,7 +168,9 @@ TEST(InjectedFault, Ds1000aHasNoAlarmForSupplyEncoderOrTemperature) {
     b.engine().set_injected_fault(f, true, b.now());
     b.run(20 * kMs, [&](Nanos) { b.set(0x607A, 0, hold); });
     EXPECT_EQ(b.get(0x603F), 0) << b.diag();
-    if (removes_main_power(f)) EXPECT_EQ(b.status() & kSwVoltageEnabled, 0);
+    if (removes_main_power(f)) {
+      EXPECT_EQ(b.status() & kSwVoltageEnabled, 0);
+    }
     b.engine().set_injected_fault(f, false, b.now());
     b.run(5 * kMs, [&](Nanos) { b.set(0x607A, 0, hold); });
     EXPECT_NE(b.status() & kSwVoltageEnabled, 0);
