@@ -44,21 +44,25 @@ void serve(network::Network& network, link::Link& link, const Clock& clock,
   // Timed waits end at SYNC/firmware deadlines (cycles down to 125 us); the default 50 us timer
   // slack of a normal thread would show as jitter there. 1 ns: wake when asked.
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  while (!stop.load(std::memory_order_relaxed)) serve_once(network, link, clock, kNever, counters, service);
+}
+
+void serve_once(network::Network& network, link::Link& link, const Clock& clock, Nanos until,
+                LoopCounters& counters, LoopService* service) {
   FrameBuffer buf;
-  while (!stop.load(std::memory_order_relaxed)) {
-    Nanos now = clock.now();
-    if (service != nullptr) service->poll(now);
-    Nanos deadline = network.next_deadline();
-    if (deadline <= now) {
-      network.tick(now);
-      deadline = network.next_deadline();
-      now = clock.now();
-    }
-    if (service != nullptr) deadline = std::min(deadline, service->next_deadline());
-    const Nanos wait = deadline == kNever ? kMaxWait : std::clamp(deadline - now, Nanos{0}, kMaxWait);
-    const std::size_t n = link.receive(buf, wait);
-    if (n != 0) handle_frame(network, link, std::span(buf).first(n), clock.now(), counters);
+  Nanos now = clock.now();
+  if (service != nullptr) service->poll(now);
+  Nanos deadline = network.next_deadline();
+  if (deadline <= now) {
+    network.tick(now);
+    deadline = network.next_deadline();
+    now = clock.now();
   }
+  if (service != nullptr) deadline = std::min(deadline, service->next_deadline());
+  deadline = std::min(deadline, until);
+  const Nanos wait = deadline == kNever ? kMaxWait : std::clamp(deadline - now, Nanos{0}, kMaxWait);
+  const std::size_t n = link.receive(buf, wait);
+  if (n != 0) handle_frame(network, link, std::span(buf).first(n), clock.now(), counters);
 }
 
 void run_until(network::Network& network, link::Link& link, VirtualClock& clock, Nanos until,

@@ -35,6 +35,13 @@ struct LoopCounters {
 void serve(network::Network& network, link::Link& link, const Clock& clock,
            const std::atomic<bool>& stop, LoopCounters& counters, LoopService* service = nullptr);
 
+// One round of serve(): the service's poll, due timers, then one wait on the link (until the next
+// deadline, `until` at the latest, kMaxWait at most) and the frame it brings. For a thread that
+// serves a line between other work (the scenario runner's real-time wire); serve() is this in a
+// loop with no `until`.
+void serve_once(network::Network& network, link::Link& link, const Clock& clock, Nanos until,
+                LoopCounters& counters, LoopService* service = nullptr);
+
 // Virtual time: handles waiting frames and due timers, advancing `clock` to each deadline up to
 // `until`; returns idle, with the clock at `until` (never moved backwards). Throws
 // std::logic_error if a timer keeps firing at one instant without its deadline moving on.

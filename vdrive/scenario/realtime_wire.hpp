@@ -1,18 +1,20 @@
 #pragma once
 // The scenario runner's wire in real time, on one thread: the line of slaves served on a real
 // interface (`line`), and, for the built-in master, the master's own interface (`master`, e.g.
-// the other end of a veth pair). While the master waits for a reply, receive() serves the line:
-// frames from the line's socket pass the to_slaves impairment stage into the Network (corrupted
-// ones to Segment::process_corrupted), replies pass the to_master stage back out, and the
-// Network's timers (SYNC, watchdogs, firmware) run at their deadlines on the monotonic clock.
-// With no built-in master (`master` null) an external master drives the line and serve_until()
-// is all the runner calls. Nothing allocates per frame; expectations read the drives on this
-// same thread, so no locks are needed.
+// the other end of a veth pair). The line is served as `vdrive run` serves it: the event loop's
+// round (runtime::serve_once) behind a fault::ImpairedLink, so wire faults act the same way in
+// both. While the master waits for a reply, receive() serves the line; when a round sent a reply,
+// it waits for it at the master's end (veth hands it over within microseconds), never past the
+// line's next deadline. With no built-in master (`master` null) an external master drives the
+// line and serve_until() is all the runner calls. Nothing allocates per frame; expectations read
+// the drives on this same thread, so no locks are needed.
 #include <array>
 #include <cstdint>
 
+#include "vdrive/fault/impaired_link.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/network/network.hpp"
+#include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/scenario/scenario_wire.hpp"
 
 namespace vdrive::scenario {
@@ -27,23 +29,18 @@ public:
   void set_capture(PcapngWriter* capture) override { capture_ = capture; }
   void serve_until(Nanos until) override;
 
-  std::uint64_t frames_served() const { return frames_; }
-
 private:
-  // One round: due impairment releases, frames waiting on the line's socket, due timers; then
-  // waits (both sockets) until something is due or `until`. Returns true if a frame for the
-  // built-in master is waiting.
-  bool serve_once(Nanos until);
-  void release_due(Nanos now);
+  // One round of the line, `until` at the latest; returns how long to wait at the master's end
+  // for a reply the round sent (0: none sent).
+  Nanos serve_round(Nanos until);
 
   network::Network& network_;
   const Clock& clock_;
-  fault::WireImpairment& wire_;
   link::Link* master_;
-  link::Link& line_;
+  fault::ImpairedLink line_;
+  runtime::LoopCounters counters_;
   PcapngWriter* capture_ = nullptr;
   std::array<std::uint8_t, link::kMaxFrame> scratch_{};
-  std::uint64_t frames_ = 0;
 };
 
 }  // namespace vdrive::scenario
