@@ -8,40 +8,15 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "vdrive/fault/fault_fields.hpp"
 #include "vdrive/scenario/time_value.hpp"
 
 namespace vdrive::control {
 namespace {
 
 using nlohmann::json;
-using K = fault::FaultKind;
 
 [[noreturn]] void fail(const std::string& message) { throw ProtocolError(message); }
-
-std::string kind_names() {
-  std::string names;
-  for (const auto& i : fault::fault_catalogue()) names += (names.empty() ? "" : ", ") + std::string(i.name);
-  return names;
-}
-
-// The fields a fault of `kind` takes, besides "kind" (as fault_of in scenario_loader.cpp).
-std::set<std::string> fields_of(K kind) {
-  const fault::FaultKindInfo& i = fault::info(kind);
-  std::set<std::string> f;
-  if (i.layer != fault::Layer::wire || kind == K::link_down) f.insert("slave");
-  if (!i.one_shot) f.insert("duration");
-  switch (kind) {
-    case K::drop: case K::corrupt: case K::duplicate: case K::reorder: f.insert({"direction", "probability"}); break;
-    case K::delay: f.insert({"direction", "delay"}); break;
-    case K::lost_reply: case K::duplicate_reply: f.insert("count"); break;
-    case K::sdo_abort: f.insert("abort_code"); break;
-    case K::alarm: f.insert("code"); break;
-    case K::collision: f.insert("position"); break;
-    case K::load_change: f.insert({"load_scale", "force"}); break;
-    default: break;
-  }
-  return f;
-}
 
 std::string field(std::string_view name) { return fmt::format("fault field \"{}\"", name); }
 
@@ -82,54 +57,44 @@ Nanos time(const json& v, std::string_view name) {
   return *ns;
 }
 
+// A request's "fault" object as fault::read_fault asks for it. JSON has no position to point
+// at, so a value that breaks a rule is quoted; the fields read are remembered so the rest can
+// be refused as not applying to the kind.
+class JsonFaultSource final : public fault::FaultFieldSource {
+public:
+  explicit JsonFaultSource(const json& j) : j_(j) {}
+  bool has(std::string_view f) const override { return j_.contains(f); }
+  std::string text(std::string_view f) override { return vdrive::control::text(at(f), f); }
+  double real(std::string_view f) override { return vdrive::control::real(at(f), f); }
+  std::int64_t integer(std::string_view f, std::int64_t min, std::int64_t max) override {
+    return vdrive::control::integer(at(f), f, min, max);
+  }
+  Nanos time(std::string_view f) override { return vdrive::control::time(at(f), f); }
+  [[noreturn]] void missing(std::string_view f, std::string_view why) override {
+    fail(fmt::format("{} is missing: {}", field(f), why));
+  }
+  [[noreturn]] void invalid(std::string_view f, std::string_view what) override { fail(fmt::format("{}: {}", field(f), what)); }
+  [[noreturn]] void out_of_range(std::string_view f, std::string_view rule) override {
+    fail(fmt::format("{}: {} {}", field(f), j_.at(std::string(f)).dump(), rule));
+  }
+  bool read(const std::string& f) const { return read_.contains(f); }
+
+private:
+  const json& at(std::string_view f) {
+    read_.insert(std::string(f));
+    return j_.at(std::string(f));
+  }
+  const json& j_;
+  std::set<std::string, std::less<>> read_;
+};
+
 fault::FaultSpec fault_of(const json& j) {
   if (!j.is_object()) fail("\"fault\" must be an object");
-  if (!j.contains("kind")) fail(fmt::format("{} is missing (one of: {})", field("kind"), kind_names()));
-  const std::string kind = text(j.at("kind"), "kind");
-  const std::optional<K> k = fault::fault_kind_from_name(kind);
-  if (!k) fail(fmt::format("unknown fault kind \"{}\" ({})", kind, kind_names()));
-  fault::FaultSpec f;
-  f.kind = *k;
-  const std::set<std::string> allowed = fields_of(f.kind);
+  JsonFaultSource source(j);
+  const fault::FaultSpec f = fault::read_fault(source, 65535);  // the injector checks the line's size
   for (const auto& [key, value] : j.items()) {
-    if (key != "kind" && !allowed.contains(key)) fail(fmt::format("{} does not apply to kind \"{}\"", field(key), kind));
+    if (!source.read(key)) fail(fmt::format("{} does not apply to kind \"{}\"", field(key), fault::info(f.kind).name));
   }
-  auto has = [&](const char* key) { return j.contains(key); };
-  if (allowed.contains("slave")) {
-    if (!has("slave")) fail(fmt::format("{} is missing: kind \"{}\" acts on one slave (1 = first)", field("slave"), kind));
-    f.slave = static_cast<int>(integer(j.at("slave"), "slave", 1, 65535));
-  }
-  if (has("duration")) f.duration = time(j.at("duration"), "duration");
-  if (has("direction")) {
-    const std::string d = text(j.at("direction"), "direction");
-    if (d == "both") f.direction = fault::WireDirection::both;
-    else if (d == "to_slaves") f.direction = fault::WireDirection::to_slaves;
-    else if (d == "to_master") f.direction = fault::WireDirection::to_master;
-    else fail(fmt::format("{}: unknown direction \"{}\" (both, to_slaves, to_master)", field("direction"), d));
-  }
-  if (has("probability")) {
-    f.probability = real(j.at("probability"), "probability");
-    if (f.probability < 0.0 || f.probability > 1.0) fail(fmt::format("{}: {} must be between 0 and 1", field("probability"), f.probability));
-  }
-  if (f.kind == K::delay) {
-    if (!has("delay")) fail(fmt::format("{} is missing: kind \"delay\" needs how long (e.g. \"2ms\")", field("delay")));
-    f.delay = time(j.at("delay"), "delay");
-  }
-  if (has("count")) f.count = static_cast<int>(integer(j.at("count"), "count", 1, 1000));
-  if (has("abort_code")) f.abort_code = static_cast<std::uint32_t>(integer(j.at("abort_code"), "abort_code", 1, std::numeric_limits<std::uint32_t>::max()));
-  if (f.kind == K::alarm) {
-    if (!has("code")) fail(fmt::format("{} is missing: kind \"alarm\" needs an alarm code of the product", field("code")));
-    f.alarm = text(j.at("code"), "code");
-  }
-  if (f.kind == K::collision) {
-    if (!has("position")) fail(fmt::format("{} is missing: kind \"collision\" needs the obstacle's position", field("position")));
-    f.position = real(j.at("position"), "position");
-  }
-  if (has("load_scale")) {
-    f.load_scale = real(j.at("load_scale"), "load_scale");
-    if (!(f.load_scale > 0.0)) fail(fmt::format("{}: {} must be > 0", field("load_scale"), f.load_scale));
-  }
-  if (has("force")) f.force = real(j.at("force"), "force");
   return f;
 }
 

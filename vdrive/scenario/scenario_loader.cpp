@@ -13,6 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "plant/plant_yaml.hpp"
+#include "vdrive/fault/fault_fields.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/scenario/time_value.hpp"
 
@@ -192,47 +193,29 @@ TimePoint time_point(Map& parent, std::string_view key, const Context& c) {
   return p;
 }
 
+// A fault step's fields as fault::read_fault asks for them; its errors carry the file position.
+class MapFaultSource final : public fault::FaultFieldSource {
+public:
+  explicit MapFaultSource(Map& m) : m_(m) {}
+  bool has(std::string_view field) const override { return m_.has(field); }
+  std::string text(std::string_view field) override { return m_.string(field); }
+  double real(std::string_view field) override { return m_.real(field); }
+  std::int64_t integer(std::string_view field, std::int64_t min, std::int64_t max) override { return m_.integer(field, min, max); }
+  Nanos time(std::string_view field) override { return m_.time(field); }
+  [[noreturn]] void missing(std::string_view field, std::string_view why) override {
+    m_.fail("", fmt::format("missing \"{}\": {}", field, why));
+  }
+  [[noreturn]] void invalid(std::string_view field, std::string_view what) override { m_.fail(field, what); }
+  [[noreturn]] void out_of_range(std::string_view field, std::string_view rule) override { m_.fail(field, rule); }
+
+private:
+  Map& m_;
+};
+
 fault::FaultSpec fault_of(Map& m, const Context& c, std::string& id) {
-  fault::FaultSpec f;
-  const std::string kind = m.string("kind");
-  const auto k = fault::fault_kind_from_name(kind);
-  if (!k) {
-    std::string names;
-    for (const auto& i : fault::fault_catalogue()) names += (names.empty() ? "" : ", ") + std::string(i.name);
-    m.fail("kind", fmt::format("unknown fault kind \"{}\" ({})", kind, names));
-  }
-  f.kind = *k;
-  const fault::FaultKindInfo& info = fault::info(f.kind);
   id = m.string_or("id", "");
-  if (info.layer != fault::Layer::wire || f.kind == fault::FaultKind::link_down) f.slave = slave_of(m, c, false);
-  if (!info.one_shot) f.duration = m.time_or("duration", 0);
-  using K = fault::FaultKind;
-  switch (f.kind) {
-    case K::drop: case K::corrupt: case K::duplicate: case K::reorder: case K::delay: {
-      const std::string d = m.string_or("direction", "both");
-      if (d == "both") f.direction = fault::WireDirection::both;
-      else if (d == "to_slaves") f.direction = fault::WireDirection::to_slaves;
-      else if (d == "to_master") f.direction = fault::WireDirection::to_master;
-      else m.fail("direction", fmt::format("unknown direction \"{}\" (both, to_slaves, to_master)", d));
-      if (f.kind == K::delay) {
-        f.delay = m.time("delay");
-      } else {
-        f.probability = m.real_or("probability", 1.0);
-        if (f.probability < 0.0 || f.probability > 1.0) m.fail("probability", "must be between 0 and 1");
-      }
-      break;
-    }
-    case K::lost_reply: case K::duplicate_reply: f.count = static_cast<int>(m.integer_or("count", 1, 1000, 1)); break;
-    case K::sdo_abort: f.abort_code = static_cast<std::uint32_t>(m.integer_or("abort_code", 1, kU32Max, 0x08000000)); break;
-    case K::alarm: f.alarm = m.string("code"); break;
-    case K::collision: f.position = m.real("position"); break;
-    case K::load_change:
-      f.load_scale = m.real_or("load_scale", 1.0);
-      if (!(f.load_scale > 0.0)) m.fail("load_scale", "must be > 0");
-      f.force = m.real_or("force", 0.0);
-      break;
-    default: break;
-  }
+  MapFaultSource source(m);
+  const fault::FaultSpec f = fault::read_fault(source, static_cast<int>(c.slaves));
   m.finish();
   return f;
 }

@@ -1,0 +1,74 @@
+#include "vdrive/fault/fault_fields.hpp"
+
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace vdrive::fault {
+
+std::string fault_kind_names() {
+  std::string names;
+  for (const FaultKindInfo& i : fault_catalogue()) names += (names.empty() ? "" : ", ") + std::string(i.name);
+  return names;
+}
+
+FaultSpec read_fault(FaultFieldSource& src, int max_slave) {
+  using K = FaultKind;
+  if (!src.has("kind")) src.missing("kind", "one of: " + fault_kind_names());
+  const std::string kind = src.text("kind");
+  const auto k = fault_kind_from_name(kind);
+  if (!k) src.invalid("kind", fmt::format("unknown fault kind \"{}\" ({})", kind, fault_kind_names()));
+  FaultSpec f;
+  f.kind = *k;
+  const FaultKindInfo& i = info(f.kind);
+  if (i.layer != Layer::wire || f.kind == K::link_down) {
+    if (!src.has("slave")) src.missing("slave", fmt::format("kind \"{}\" acts on one slave (1 = first)", kind));
+    f.slave = static_cast<int>(src.integer("slave", 1, max_slave));
+  }
+  if (!i.one_shot && src.has("duration")) f.duration = src.time("duration");
+  switch (f.kind) {
+    case K::drop: case K::corrupt: case K::duplicate: case K::reorder: case K::delay:
+      if (src.has("direction")) {
+        const std::string d = src.text("direction");
+        if (d == "both") f.direction = WireDirection::both;
+        else if (d == "to_slaves") f.direction = WireDirection::to_slaves;
+        else if (d == "to_master") f.direction = WireDirection::to_master;
+        else src.invalid("direction", fmt::format("unknown direction \"{}\" (both, to_slaves, to_master)", d));
+      }
+      if (f.kind == K::delay) {
+        if (!src.has("delay")) src.missing("delay", "kind \"delay\" needs how long (e.g. \"2ms\")");
+        f.delay = src.time("delay");
+      } else if (src.has("probability")) {
+        f.probability = src.real("probability");
+        if (f.probability < 0.0 || f.probability > 1.0) src.out_of_range("probability", "must be between 0 and 1");
+      }
+      break;
+    case K::lost_reply: case K::duplicate_reply:
+      if (src.has("count")) f.count = static_cast<int>(src.integer("count", 1, 1000));
+      break;
+    case K::sdo_abort:
+      if (src.has("abort_code"))
+        f.abort_code = static_cast<std::uint32_t>(src.integer("abort_code", 1, std::numeric_limits<std::uint32_t>::max()));
+      break;
+    case K::alarm:
+      if (!src.has("code")) src.missing("code", "kind \"alarm\" needs an alarm code of the product");
+      f.alarm = src.text("code");
+      break;
+    case K::collision:
+      if (!src.has("position")) src.missing("position", "kind \"collision\" needs the obstacle's position");
+      f.position = src.real("position");
+      break;
+    case K::load_change:
+      if (src.has("load_scale")) {
+        f.load_scale = src.real("load_scale");
+        if (!(f.load_scale > 0.0)) src.out_of_range("load_scale", "must be > 0");
+      }
+      if (src.has("force")) f.force = src.real("force");
+      break;
+    default:
+      break;
+  }
+  return f;
+}
+
+}  // namespace vdrive::fault
