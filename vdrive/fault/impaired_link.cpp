@@ -24,7 +24,11 @@ ImpairedLink::ImpairedLink(link::Link& inner, WireImpairment& wire, network::Net
 
 void ImpairedLink::refresh() {
   engaged_ = !clean(wire_.settings(Direction::to_slaves)) || !clean(wire_.settings(Direction::to_master)) ||
-             wire_.next_release(Direction::to_slaves) != kNever || wire_.next_release(Direction::to_master) != kNever;
+             next_release() != kNever;
+}
+
+Nanos ImpairedLink::next_release() const {
+  return std::min(wire_.next_release(Direction::to_slaves), wire_.next_release(Direction::to_master));
 }
 
 std::size_t ImpairedLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
@@ -66,8 +70,7 @@ std::size_t ImpairedLink::receive_impaired(std::span<std::uint8_t> buf, Nanos ti
     send_due(now);
     if (const std::size_t n = pop_due(buf, now)) return n;
     if (asked && now >= deadline) return 0;
-    const Nanos next = std::min({deadline, wire_.next_release(Direction::to_slaves),
-                                 wire_.next_release(Direction::to_master)});
+    const Nanos next = std::min(deadline, next_release());
     const Nanos wait = next == kNever ? -1 : std::max<Nanos>(next - now, 0);
     const std::size_t n = inner_.receive(buf, wait);
     asked = true;

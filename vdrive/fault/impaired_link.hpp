@@ -32,6 +32,9 @@ public:
 
   // Re-reads the impairment's settings: call after changing them.
   void refresh();
+  // When the next held frame (either direction) comes out; INT64_MAX if none is held. Someone
+  // who waits elsewhere (the scenario runner's real-time wire) must be back by then.
+  Nanos next_release() const;
   bool engaged() const { return engaged_; }
 
 private:

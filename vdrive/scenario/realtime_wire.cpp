@@ -26,7 +26,8 @@ Nanos RealtimeWire::serve_round(Nanos until) {
   line_.refresh();  // the runner's FaultInjector may have changed the wire between rounds
   runtime::serve_once(network_, line_, clock_, until, counters_);
   if (!master_ || counters_.frames_out.load(std::memory_order_relaxed) == sent) return 0;
-  return std::clamp(std::min(network_.next_deadline(), until) - clock_.now(), Nanos{0}, runtime::kMaxWait);
+  const Nanos back = std::min({network_.next_deadline(), line_.next_release(), until});
+  return std::clamp(back - clock_.now(), Nanos{0}, runtime::kMaxWait);
 }
 
 std::size_t RealtimeWire::receive(std::span<std::uint8_t> buf, Nanos timeout) {

@@ -5,7 +5,7 @@
 // round (runtime::serve_once) behind a fault::ImpairedLink, so wire faults act the same way in
 // both. While the master waits for a reply, receive() serves the line; when a round sent a reply,
 // it waits for it at the master's end (veth hands it over within microseconds), never past the
-// line's next deadline. With no built-in master (`master` null) an external master drives the
+// line's next deadline or the wire's next held frame (a delayed reply comes out on time). With no built-in master (`master` null) an external master drives the
 // line and serve_until() is all the runner calls. Nothing allocates per frame; expectations read
 // the drives on this same thread, so no locks are needed.
 #include <array>
