@@ -9,6 +9,9 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libeigen3-dev libode-dev
   libtinyxml2-dev
+  fastddsgen libfastrtps-dev libfastcdr-dev
+  gnuplot-nox libpng-dev
+  libxdp-dev libbpf-dev
   iproute2 tshark procps
   python3 python3-yaml
 )
