@@ -1,0 +1,204 @@
+// The telemetry's sampling on the event loop thread. See sampler.hpp.
+#include "vdrive/telemetry/sampler.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "esc_model/registers.hpp"
+#include "plant/plant.hpp"
+#include "vdrive/fault/fault_injector.hpp"
+#include "vdrive/network/network.hpp"
+#include "vdrive/runtime/event_loop.hpp"
+
+namespace vdrive::telemetry {
+namespace {
+
+constexpr std::uint16_t kAlStatus = 0x0130, kAlStatusCode = 0x0134;
+constexpr std::size_t kMaxWatchedFaults = 64;
+
+std::uint16_t peek16(esc::Esc& e, std::uint16_t a) {
+  return static_cast<std::uint16_t>(e.peek(a) | (e.peek(static_cast<std::uint16_t>(a + 1)) << 8));
+}
+
+std::uint32_t sum_bytes(esc::Esc& e, std::uint16_t from, std::uint16_t to) {
+  std::uint32_t s = 0;
+  for (std::uint16_t a = from; a < to; ++a) s += e.peek(a);
+  return s;
+}
+
+std::uint64_t load(const std::atomic<std::uint64_t>& c) { return c.load(std::memory_order_relaxed); }
+
+}  // namespace
+
+const char* event_kind_name(EventKind kind) {
+  switch (kind) {
+    case EventKind::al_state: return "al_state";
+    case EventKind::alarm_raised: return "alarm_raised";
+    case EventKind::alarm_cleared: return "alarm_cleared";
+    case EventKind::fault_injected: return "fault_injected";
+    case EventKind::fault_cleared: return "fault_cleared";
+    case EventKind::plant_set: return "plant_set";
+  }
+  return "unknown";
+}
+
+Sampler::Sampler(network::Network& network, double rate_hz, SamplerSources sources)
+    : network_(network), sources_(sources),
+      samples_(std::make_unique<runtime::SpscQueue<Sample, kQueueSize>>()) {
+  if (!(rate_hz > 0.0 && rate_hz <= kMaxRateHz))
+    throw std::invalid_argument(fmt::format("telemetry rate {} Hz is not in (0, {}] Hz", rate_hz, kMaxRateHz));
+  period_ = std::max<Nanos>(1, std::llround(1e9 / rate_hz));
+  for (std::size_t i = 0; i < network_.size(); ++i) {
+    if (network_.firmware(i).drive() != nullptr) {
+      od::ObjectStore& o = network_.firmware(i).objects();
+      drives_.push_back(Drive{{o, 0x6041}, {o, 0x6040}, {o, 0x6061}, {o, 0x6064}, {o, 0x606C}, {o, 0x6077}, {o, 0x60F4}, {o, 0x603F}});
+      last_error_.push_back(static_cast<std::uint16_t>(drives_.back()->error_code.get()));
+    } else {
+      drives_.emplace_back();
+      last_error_.push_back(0);
+    }
+    last_al_.push_back(peek16(network_.esc(i), kAlStatus));
+  }
+  last_faults_.reserve(kMaxWatchedFaults);
+}
+
+Sampler::~Sampler() = default;
+
+void Sampler::poll(Nanos now) {
+  if (!requests_.empty()) {
+    while (std::optional<TelemetryRequest> r = requests_.try_pop()) {
+      TelemetryReply reply{r->ticket, handle(*r, now)};
+      // The telemetry thread drains replies as it drains samples; if it is that far behind,
+      // its requester has given up waiting.
+      (void)replies_.try_push(std::move(reply));
+    }
+  }
+  if (now < next_) return;
+  sample(now);
+  next_ += period_;
+  if (next_ <= now) next_ = now + period_;  // late by more than a period: skip, never burst
+}
+
+void Sampler::push(const Sample& s) {
+  Sample copy = s;
+  if (!samples_->try_push(std::move(copy))) dropped_.store(dropped_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+}
+
+void Sampler::event(Nanos now, std::uint16_t slave, EventKind kind, std::uint32_t value, std::uint32_t previous, const char* text) {
+  EventSample e;
+  e.time = now;
+  e.slave = slave;
+  e.kind = kind;
+  e.value = value;
+  e.previous = previous;
+  const auto r = fmt::format_to_n(e.text.data(), e.text.size() - 1, "{}", text);
+  *r.out = '\0';
+  push(e);
+}
+
+void Sampler::sample(Nanos now) {
+  const TurnaroundPeriod t = sources_.turnaround != nullptr ? sources_.turnaround->take() : TurnaroundPeriod{};
+  for (std::size_t i = 0; i < network_.size(); ++i) {
+    esc::Esc& e = network_.esc(i);
+    const auto slave = static_cast<std::uint16_t>(i + 1);
+    const std::uint16_t al = peek16(e, kAlStatus), code = peek16(e, kAlStatusCode);
+    if (al != last_al_[i]) {
+      char text[64];
+      *fmt::format_to_n(text, sizeof text - 1, "AL status 0x{:02X} -> 0x{:02X}, status code 0x{:04X}", last_al_[i], al, code).out = '\0';
+      event(now, slave, EventKind::al_state, al, last_al_[i], text);
+      last_al_[i] = al;
+    }
+    if (drives_[i]) {
+      const Drive& d = *drives_[i];
+      AxisSample a;
+      a.time = now;
+      a.slave = slave;
+      a.al_state = al;
+      a.al_status_code = code;
+      a.statusword = static_cast<std::uint16_t>(d.statusword.get());
+      a.controlword = static_cast<std::uint16_t>(d.controlword.get());
+      a.mode = static_cast<std::int8_t>(d.mode.get());
+      a.position = static_cast<std::int32_t>(d.position.get());
+      a.velocity = static_cast<std::int32_t>(d.velocity.get());
+      a.torque = static_cast<std::int16_t>(d.torque.get());
+      a.following_error = static_cast<std::int32_t>(d.following_error.get());
+      a.error_code = static_cast<std::uint16_t>(d.error_code.get());
+      a.winding_c = a.housing_c = std::numeric_limits<double>::quiet_NaN();
+      if (const plant::Plant* p = network_.firmware(i).plant(); p != nullptr && p->axis_count() > 0) {
+        a.winding_c = p->feedback(0).winding_c;
+        a.housing_c = p->feedback(0).housing_c;
+      }
+      push(a);
+      if (a.error_code != last_error_[i]) {
+        char text[64];
+        *fmt::format_to_n(text, sizeof text - 1, "603Fh 0x{:04X} -> 0x{:04X}", last_error_[i], a.error_code).out = '\0';
+        event(now, slave, a.error_code != 0 ? EventKind::alarm_raised : EventKind::alarm_cleared, a.error_code, last_error_[i], text);
+        last_error_[i] = a.error_code;
+      }
+    }
+    BusSample b;
+    b.time = now;
+    b.slave = slave;
+    b.al_state = al;
+    b.al_status_code = code;
+    if (sources_.counters != nullptr) {
+      b.frames_in = load(sources_.counters->frames_in);
+      b.frames_out = load(sources_.counters->frames_out);
+      b.frames_dropped = load(sources_.counters->dropped);
+      b.send_failed = load(sources_.counters->send_failed);
+    }
+    b.rx_errors = sum_bytes(e, esc::reg::kRxErrorCounter, esc::reg::kRxErrorCounter + 8);
+    b.lost_links = sum_bytes(e, esc::reg::kLostLinkCounter, esc::reg::kLostLinkCounterEnd);
+    b.samples_dropped = dropped();
+    b.turnaround_last = t.last;
+    b.turnaround_min = t.min;
+    b.turnaround_mean = t.mean;
+    b.turnaround_max = t.max;
+    push(b);
+  }
+  if (sources_.faults != nullptr) sample_faults(now);
+}
+
+void Sampler::sample_faults(Nanos now) {
+  const std::vector<fault::ActiveFault>& active = sources_.faults->active();
+  for (const fault::ActiveFault& f : active) {
+    if (std::find(last_faults_.begin(), last_faults_.end(), f.id) != last_faults_.end()) continue;
+    char text[80];
+    *fmt::format_to_n(text, sizeof text - 1, "fault {} {} started", f.id, fault::info(f.spec.kind).name).out = '\0';
+    event(now, static_cast<std::uint16_t>(f.spec.slave), EventKind::fault_injected, static_cast<std::uint32_t>(f.id), 0, text);
+  }
+  for (const int id : last_faults_) {
+    if (std::any_of(active.begin(), active.end(), [id](const fault::ActiveFault& f) { return f.id == id; })) continue;
+    char text[48];
+    *fmt::format_to_n(text, sizeof text - 1, "fault {} ended", id).out = '\0';
+    event(now, 0, EventKind::fault_cleared, static_cast<std::uint32_t>(id), 0, text);
+  }
+  last_faults_.clear();  // keeps its capacity
+  for (const fault::ActiveFault& f : active)
+    if (last_faults_.size() < kMaxWatchedFaults) last_faults_.push_back(f.id);
+}
+
+control::ControlReply Sampler::handle(const TelemetryRequest& r, Nanos now) {
+  if (r.kind == TelemetryRequest::Kind::fault) {
+    if (!fault_handler_) return control::error_reply(control::ControlReply::Status::failed, "this vdrive takes no fault requests");
+    return fault_handler_(r.fault, now);
+  }
+  const PlantSet& p = r.plant;
+  if (p.slave < 1 || static_cast<std::size_t>(p.slave) > network_.size())
+    return control::error_reply(control::ControlReply::Status::bad_request,
+                                fmt::format("plant_set: no slave {} (the line has {})", p.slave, network_.size()));
+  plant::Plant* plant = network_.firmware(static_cast<std::size_t>(p.slave - 1)).plant();
+  if (plant == nullptr || plant->axis_count() == 0)
+    return control::error_reply(control::ControlReply::Status::bad_request, fmt::format("plant_set: slave {} has no plant", p.slave));
+  plant->set_external_load(0, p.external_load);
+  char text[64];
+  *fmt::format_to_n(text, sizeof text - 1, "external load {:g}", p.external_load).out = '\0';
+  event(now, static_cast<std::uint16_t>(p.slave), EventKind::plant_set, 0, 0, text);
+  return {};
+}
+
+}  // namespace vdrive::telemetry

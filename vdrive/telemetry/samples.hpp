@@ -1,0 +1,52 @@
+#pragma once
+// What the event loop hands the telemetry thread: fixed-size values (no strings, no heap), so
+// copying one into the SPSC queue allocates nothing. The telemetry thread turns them into the
+// DDS messages of idl/Telemetry.idl; fields and units are the same (docs/telemetry.md).
+#include <array>
+#include <cstdint>
+#include <variant>
+
+#include "common/clock.hpp"
+
+namespace vdrive::telemetry {
+
+struct AxisSample {
+  Nanos time = 0;
+  std::uint16_t slave = 0;  // from 1
+  std::uint16_t al_state = 0, al_status_code = 0;
+  std::uint16_t statusword = 0, controlword = 0;
+  std::int8_t mode = 0;
+  std::int32_t position = 0, velocity = 0;
+  std::int16_t torque = 0;
+  std::int32_t following_error = 0;
+  std::uint16_t error_code = 0;
+  double winding_c = 0.0, housing_c = 0.0;  // NaN without a plant
+};
+
+struct BusSample {
+  Nanos time = 0;
+  std::uint16_t slave = 0;
+  std::uint16_t al_state = 0, al_status_code = 0;
+  std::uint64_t frames_in = 0, frames_out = 0, frames_dropped = 0, send_failed = 0;
+  std::uint32_t rx_errors = 0, lost_links = 0;
+  std::uint64_t samples_dropped = 0;
+  // Frame in to reply out over the sample period; all 0 when no frame came.
+  Nanos turnaround_last = 0, turnaround_min = 0, turnaround_mean = 0, turnaround_max = 0;
+};
+
+enum class EventKind : std::uint8_t { al_state, alarm_raised, alarm_cleared, fault_injected, fault_cleared, plant_set };
+
+struct EventSample {
+  Nanos time = 0;
+  std::uint16_t slave = 0;  // 0: the line
+  EventKind kind = EventKind::al_state;
+  std::uint32_t value = 0, previous = 0;
+  std::array<char, 96> text{};  // NUL-terminated
+};
+
+using Sample = std::variant<AxisSample, BusSample, EventSample>;
+
+// "al_state", "alarm_raised", ... as the Event_ message's `kind` carries them.
+const char* event_kind_name(EventKind kind);
+
+}  // namespace vdrive::telemetry

@@ -1,0 +1,52 @@
+// Parsing of the telemetry control topic's requests. See telemetry_request.hpp.
+#include "vdrive/telemetry/telemetry_request.hpp"
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "vdrive/control/control_protocol.hpp"
+
+namespace vdrive::telemetry {
+namespace {
+
+using control::ProtocolError;
+
+PlantSet read_plant_set(const nlohmann::json& j) {
+  PlantSet p;
+  for (const auto& [key, value] : j.items()) {
+    if (key != "op" && key != "slave" && key != "external_load")
+      throw ProtocolError(fmt::format("plant_set: unexpected field '{}' (plant_set takes slave, external_load)", key));
+  }
+  if (!j.contains("slave")) throw ProtocolError("plant_set: 'slave' is missing (the drive whose plant changes, from 1)");
+  const nlohmann::json& s = j["slave"];
+  if (!s.is_number_integer() || s.get<std::int64_t>() < 1 || s.get<std::int64_t>() > std::numeric_limits<std::uint16_t>::max())
+    throw ProtocolError(fmt::format("plant_set: 'slave' must be an integer from 1, not {}", s.dump()));
+  p.slave = s.get<int>();
+  if (!j.contains("external_load")) throw ProtocolError("plant_set: 'external_load' is missing (N or N m on the load)");
+  const nlohmann::json& f = j["external_load"];
+  if (!f.is_number() || !std::isfinite(f.get<double>()))
+    throw ProtocolError(fmt::format("plant_set: 'external_load' must be a finite number, not {}", f.dump()));
+  p.external_load = f.get<double>();
+  return p;
+}
+
+}  // namespace
+
+TelemetryRequest parse_telemetry_request(std::string_view line) {
+  nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) throw ProtocolError("request is not a JSON object");
+  TelemetryRequest r;
+  if (j.contains("op") && j["op"] == "plant_set") {
+    r.kind = TelemetryRequest::Kind::plant_set;
+    r.plant = read_plant_set(j);
+  } else {
+    r.kind = TelemetryRequest::Kind::fault;
+    r.fault = control::parse_request(line);
+  }
+  return r;
+}
+
+}  // namespace vdrive::telemetry
