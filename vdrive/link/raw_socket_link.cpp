@@ -7,14 +7,16 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <ctime>
 
 #include "vdrive/link/net_interface.hpp"
 
 namespace vdrive::link {
 
 RawSocketLink::RawSocketLink(const std::string& interface_name, Options options)
-    : name_(interface_name) {
+    : name_(interface_name), busy_poll_(options.busy_poll < 0 ? 0 : options.busy_poll) {
   ifindex_ = net::interface_index(name_);
   if (!net::interface_is_up(name_)) {
     throw LinkError(LinkError::Kind::InterfaceDown,
@@ -53,6 +55,12 @@ RawSocketLink::RawSocketLink(const std::string& interface_name, Options options)
       // Best effort: an old kernel without it still works, only slower.
       (void)::setsockopt(fd_, SOL_PACKET, PACKET_QDISC_BYPASS, &on, sizeof on);
     }
+    if (busy_poll_ > 0) {
+      // Microseconds, for drivers with NAPI busy polling; elsewhere (veth) it is accepted and has
+      // no effect, and without CAP_NET_ADMIN it may be refused: the spin in receive() still works.
+      const int us = static_cast<int>(std::min<Nanos>(busy_poll_ / 1000 + 1, 1'000'000));
+      (void)::setsockopt(fd_, SOL_SOCKET, SO_BUSY_POLL, &us, sizeof us);
+    }
   } catch (...) {
     ::close(fd_);
     throw;
@@ -63,8 +71,24 @@ RawSocketLink::~RawSocketLink() {
   if (fd_ >= 0) ::close(fd_);
 }
 
+namespace {
+
+Nanos monotonic_now() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<Nanos>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+}  // namespace
+
 std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
   const net::ReceiveDeadline deadline(timeout);
+  // The spin ends at the busy-poll window or the caller's timeout, whichever is first; 0: none.
+  Nanos spin_until = 0;
+  if (busy_poll_ > 0 && timeout != 0) {
+    const Nanos window = timeout > 0 ? std::min(busy_poll_, timeout) : busy_poll_;
+    spin_until = monotonic_now() + window;
+  }
   for (;;) {
     sockaddr_ll from{};
     socklen_t from_len = sizeof from;
@@ -91,6 +115,10 @@ std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
       return 0;
     }
     if (errno != EAGAIN && errno != EWOULDBLOCK) return 0;
+    if (spin_until != 0) {
+      if (monotonic_now() < spin_until) continue;
+      spin_until = 0;  // the window is over: sleep for the rest of the timeout
+    }
     if (!deadline.wait(fd_)) return 0;
   }
 }

@@ -1,0 +1,12 @@
+#pragma once
+// Pinning the serving thread to one CPU (`vdrive run --cpu N`): the frame path then never migrates
+// between cores (cold caches, a wake-up on a busy core), and the CPU can be kept free of other work
+// (isolcpus, a cpuset). Threads started before the pinning keep their own affinity.
+
+namespace vdrive::runtime {
+
+// Pins the calling thread to CPU `cpu`. Returns 0, or the errno of sched_setaffinity (EINVAL: no
+// such CPU, or not in this process's allowed set).
+int pin_to_cpu(int cpu);
+
+}  // namespace vdrive::runtime
