@@ -112,15 +112,12 @@ for p in $pkgs; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || fail "runtime-packages.sh listed $p, not an installed package"
 done
 echo "$pkgs" | grep -qx libyaml-cpp0.7 || fail "libyaml-cpp0.7 (yaml-cpp) missing from: $pkgs"
-# Every library vdrive loads lives in one of the listed packages.
+# Every library vdrive loads lives in one of the listed packages (compared by real path: usrmerge).
+for p in $pkgs; do dpkg -L "$p"; done | grep -E '\.so' | while read -r f; do [ -e "$f" ] && realpath "$f"; done \
+  | sort -u >"$WORK/owned"
 while read -r _ arrow path _; do
   [ "$arrow" = "=>" ] || continue
-  real=$(realpath "$path")
-  found=""
-  for p in $pkgs; do
-    dpkg -L "$p" 2>/dev/null | while read -r f; do [ -e "$f" ] && [ "$(realpath "$f")" = "$real" ] && echo y && break; done | grep -q y && { found=$p; break; }
-  done
-  [ -n "$found" ] || fail "$path (loaded by vdrive) is in none of: $pkgs"
+  grep -qxF "$(realpath "$path")" "$WORK/owned" || fail "$path (loaded by vdrive) is in none of: $pkgs"
 done < <(ldd "$PREFIX/bin/vdrive")
 bash "$SRC/docker/runtime-packages.sh" "$WORK/nonexistent" 2>"$WORK/rp.err"; rc=$?
 [ $rc -eq 1 ] && grep -q "nonexistent: not an executable" "$WORK/rp.err" || fail "runtime-packages.sh on a missing file: exit $rc, $(cat "$WORK/rp.err")"
