@@ -70,12 +70,19 @@ ip link set "$S_IF" netns "$NS"
 ip link set "$M_IF" up
 ip -n "$NS" link set "$S_IF" up
 
-# Starts a responder in the namespace (log: $OUT/NAME.log) and gives it a moment to open its socket.
+# start_server NAME READY COMMAND...: a responder in the namespace (log: $OUT/NAME.log); waits
+# until its log matches READY (empty: a fixed moment), then one more second for its socket.
 start_server() {
-  local name=$1; shift
+  local name=$1 ready=$2; shift 2
   ip netns exec "$NS" "$@" >"$OUT/$name.log" 2>&1 &
   SERVER_PID=$!
-  sleep "${SERVER_SETTLE:-1}"
+  local _
+  for _ in $(seq 1 600); do   # a line of 64 drives takes seconds to build on a loaded host
+    [ -z "$ready" ] || grep -q "$ready" "$OUT/$name.log" 2>/dev/null && break
+    kill -0 "$SERVER_PID" 2>/dev/null || break
+    sleep 0.1
+  done
+  sleep 1
   kill -0 "$SERVER_PID" 2>/dev/null || { cat "$OUT/$name.log"; echo "$name exited early"; exit 1; }
 }
 
@@ -100,18 +107,18 @@ echo "load average before: $(cat /proc/loadavg)"
 status=0
 for n in $DRIVES; do
   # shellcheck disable=SC2046,SC2086
-  start_server "vdrive-$n" "$VDRIVE" run --iface "$S_IF" --no-control $(drive_args "$n") ${VDRIVE_OPTS:-}
+  start_server "vdrive-$n" "serving" "$VDRIVE" run --iface "$S_IF" --no-control $(drive_args "$n") ${VDRIVE_OPTS:-}
   measure vdrive "$n" op || status=1
   stop_server
   image=$(grep "\"label\":\"vdrive/$n\"" "$RESULTS" | head -1 | sed -n 's/.*"image_bytes":\([0-9]*\).*/\1/p')
   # shellcheck disable=SC2086
-  start_server "echo-$n" "$ECHO" --iface "$S_IF" ${ECHO_OPTS:-}
+  start_server "echo-$n" "" "$ECHO" --iface "$S_IF" ${ECHO_OPTS:-}
   measure echo "$n" echo --image-bytes "${image:-64}" || status=1
   stop_server
   if [ -n "$KICKCAT_SIM" ]; then
     slaves=()
     for ((i = 0; i < n; i++)); do slaves+=("$KICKCAT_SLAVE"); done
-    start_server "kickcat-$n" "$KICKCAT_SIM" -i "$S_IF" -s "${slaves[@]}"
+    start_server "kickcat-$n" "Opening nominal interface" "$KICKCAT_SIM" -i "$S_IF" -s "${slaves[@]}"
     measure kickcat "$n" op || status=1
     stop_server
   fi

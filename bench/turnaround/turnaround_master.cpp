@@ -23,6 +23,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bench/turnaround/cycle_frame.hpp"
 #include "bench/turnaround/round_trips.hpp"
@@ -33,8 +34,8 @@
 namespace {
 
 using vdrive::Nanos;
-using vdrive::bench::CycleExpectation;
-using vdrive::bench::CycleFrame;
+using vdrive::bench::CycleFrames;
+using vdrive::bench::SlaveImage;
 using vdrive::bench::RoundTrips;
 
 struct Options {
@@ -84,8 +85,7 @@ struct Line {
   std::uint32_t logical_start = 0;
   std::size_t image_bytes = 0;
   std::uint16_t reference = 0x1001;
-  CycleExpectation expect;
-  std::size_t slaves = 0;
+  std::vector<SlaveImage> slaves;  // empty: an echo, every working counter stays 0
 };
 
 // The line in Op through the project master (vdrive-master op's way), left there.
@@ -113,13 +113,15 @@ std::optional<Line> bring_to_op(vdrive::link::Link& link, const Options& o) {
   line.logical_start = r.layout.logical_start;
   line.image_bytes = r.layout.size();
   line.reference = r.reference_station != 0 ? r.reference_station : master.slaves().front().station;
-  line.slaves = n;
-  line.expect = {r.layout.expected_wkc, static_cast<std::uint16_t>(n), static_cast<std::uint16_t>(n)};
+  for (const vdrive::master::Slave& s : master.slaves()) {
+    const vdrive::master::SlaveProcessData& pd = s.process_data;
+    line.slaves.push_back({pd.output_logical, pd.output_bytes, pd.input_logical, pd.input_bytes});
+  }
   return line;
 }
 
 int measure(vdrive::link::Link& link, const Options& o, const Line& line) {
-  CycleFrame cycle(line.logical_start, line.image_bytes, line.reference);
+  CycleFrames cycle(line.logical_start, line.image_bytes, line.reference, line.slaves);
   RoundTrips trips(o.samples);
   std::array<std::uint8_t, vdrive::link::kMaxFrame> rx{};
   const Nanos period = o.rate_hz == 0 ? 0 : 1'000'000'000 / o.rate_hz;
@@ -130,37 +132,44 @@ int measure(vdrive::link::Link& link, const Options& o, const Line& line) {
       next += period;
       sleep_until(next);
     }
-    const std::span<const std::uint8_t> bytes = cycle.build(n);
     const bool measured = n >= o.warmup;
     if (measured) trips.count_sent();
+    // The round trip of a cycle: first frame sent -> last reply in (one frame up to 16 drives).
     const Nanos t0 = now_ns();
-    if (!link.send(bytes)) continue;  // sent and lost
+    bool sent = true;
+    for (std::size_t i = 0; i < cycle.count(); ++i) sent = link.send(cycle.build(i, n)) && sent;
+    if (!sent) continue;  // sent and lost
     const Nanos deadline = t0 + timeout;
-    for (;;) {
+    std::size_t answered = 0;
+    bool wkc_ok = true;
+    std::uint32_t seen = 0;
+    while (answered < cycle.count()) {
       const Nanos left = deadline - now_ns();
       if (left <= 0) break;
       const std::size_t len = link.receive(rx, left);
       if (len == 0) continue;
-      if (!cycle.accept(std::span<const std::uint8_t>(rx.data(), len))) continue;  // a late reply
-      const Nanos t1 = now_ns();
-      if (measured) {
-        trips.add(t1 - t0);
-        if (!cycle.working_counters_are(line.expect)) trips.count_wrong_wkc();
-      }
-      break;
+      const int i = cycle.accept(std::span<const std::uint8_t>(rx.data(), len));
+      if (i < 0 || (seen & (1u << i)) != 0) continue;  // a late reply to an earlier cycle, a duplicate
+      seen |= 1u << i;
+      ++answered;
+      wkc_ok = wkc_ok && cycle.working_counters_ok(static_cast<std::size_t>(i));
+    }
+    if (answered == cycle.count() && measured) {
+      trips.add(now_ns() - t0);
+      if (!wkc_ok) trips.count_wrong_wkc();
     }
   }
   const vdrive::bench::RoundTripSummary s = trips.summarize();
   const std::string mode = o.rate_hz == 0 ? "back-to-back" : fmt::format("{}Hz", o.rate_hz);
   const std::string label = o.label.empty() ? o.line : o.label;
-  std::printf("%-14s %-12s slaves %3zu image %4zu B  sent %6llu lost %4llu wrong-wkc %4llu  p50 %7.1f  p99 %7.1f  p99.9 %7.1f  max %8.1f us\n",
-              label.c_str(), mode.c_str(), line.slaves, line.image_bytes, static_cast<unsigned long long>(s.sent),
+  std::printf("%-14s %-12s slaves %3zu image %4zu B in %zu frame(s)  sent %6llu lost %4llu wrong-wkc %4llu  p50 %7.1f  p99 %7.1f  p99.9 %7.1f  max %8.1f us\n",
+              label.c_str(), mode.c_str(), line.slaves.size(), line.image_bytes, cycle.count(), static_cast<unsigned long long>(s.sent),
               static_cast<unsigned long long>(s.lost()), static_cast<unsigned long long>(s.wrong_wkc), s.p50 / 1e3, s.p99 / 1e3,
               s.p999 / 1e3, s.max / 1e3);
   if (!o.json.empty()) {
     std::ofstream out(o.json, std::ios::app);
     std::string j = vdrive::bench::to_json(label, mode, s);
-    j.insert(j.size() - 1, fmt::format(R"(,"slaves":{},"image_bytes":{})", line.slaves, line.image_bytes));
+    j.insert(j.size() - 1, fmt::format(R"(,"slaves":{},"image_bytes":{},"frames":{})", line.slaves.size(), line.image_bytes, cycle.count()));
     out << j << '\n';
     if (!out) throw std::runtime_error("--json: cannot write " + o.json);
   }
@@ -180,7 +189,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0u, 100000u));
   app.add_option("--samples", o.samples, "Measured frames (default 10000)")->check(CLI::Range(std::size_t{1}, std::size_t{10'000'000}));
   app.add_option("--warmup", o.warmup, "Frames sent before measuring (default 500)");
-  app.add_option("--image-bytes", o.image_bytes, "--line echo: LRW length (default 64)")->check(CLI::Range(std::size_t{1}, CycleFrame::kMaxImage));
+  app.add_option("--image-bytes", o.image_bytes, "--line echo: LRW length (default 64)")->check(CLI::Range(std::size_t{1}, CycleFrames::kMaxImagePerFrame * CycleFrames::kMaxFrames));
   app.add_option("--timeout-us", o.timeout_us, "A reply later than this is lost (default 10000)")->check(CLI::Range(1L, 10'000'000L));
   app.add_option("--busy-poll-us", o.busy_poll_us, "Spin this long on the socket before sleeping (default 0)")->check(CLI::Range(0L, 1'000'000L));
   app.add_option("--rt-priority", o.rt_priority, "SCHED_FIFO priority 1..99 and locked memory")->check(CLI::Range(1, 99));

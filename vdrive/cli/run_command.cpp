@@ -29,6 +29,7 @@
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/runtime/loop_waker.hpp"
+#include "vdrive/runtime/cpu_affinity.hpp"
 #include "vdrive/runtime/realtime.hpp"
 #include "vdrive/runtime/stop_signal.hpp"
 
@@ -44,6 +45,8 @@ struct RunOptions {
   std::string profile_dir;
   bool no_qdisc_bypass = false;
   int rt_priority = 0;  // 0: normal scheduling
+  long busy_poll_us = 0;  // raw socket: spin before sleeping (RawSocketLink::Options::busy_poll)
+  int cpu = -1;           // pin the serving thread; -1: no pinning
   std::vector<std::string> plants;  // "N:FILE": slave N (cable order, from 0) moves the plant in FILE
   std::string control;              // runtime control socket; empty: default_control_path()
   std::uint64_t fault_seed = 1;     // wire impairment's generator
@@ -149,6 +152,7 @@ std::unique_ptr<link::Link> open_link(const RunOptions& o) {
     if (!o.tap.empty()) return std::make_unique<link::TapLink>(o.tap);
     link::RawSocketLink::Options options;
     options.qdisc_bypass = !o.no_qdisc_bypass;
+    options.busy_poll = static_cast<Nanos>(o.busy_poll_us) * 1000;
     return std::make_unique<link::RawSocketLink>(o.iface, options);
   } catch (const link::LinkError& e) {
     throw CliError(exit_code_for(e.kind()), e.what());
@@ -200,6 +204,11 @@ void run(const RunOptions& o) {
                o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
   if (control) spdlog::info("fault control on {}", control->path());
   runtime::LoopCounters counters;
+  // Pinned last, so the threads started above (control, telemetry) stay off the serving CPU.
+  if (o.cpu >= 0) {
+    if (const int err = runtime::pin_to_cpu(o.cpu); err != 0)
+      throw CliError(kExitBadArguments, fmt::format("--cpu {}: {}", o.cpu, std::strerror(err)));
+  }
   try {
     runtime::serve(*network, impaired, clock, stop, counters, control ? &faults : nullptr);
   } catch (const link::LinkError& e) {  // the interface was removed while serving
@@ -245,6 +254,10 @@ void add_run_command(CLI::App& app) {
                   "for root, else /tmp/vdrive-UID/IFACE.sock); see vdrive fault");
   cmd->add_flag("--no-control", o->no_control, "Serve without the runtime control socket")->excludes(control);
   cmd->add_option("--fault-seed", o->fault_seed, "Seed of the random wire faults (drop, corrupt, ...; default 1)");
+  cmd->add_option("--busy-poll-us", o->busy_poll_us,
+                  "Raw socket: spin up to US microseconds for the next frame before sleeping (default 0: sleep at once)")
+      ->check(CLI::Range(0L, 1'000'000L));
+  cmd->add_option("--cpu", o->cpu, "Pin the serving thread to CPU N (default: not pinned)")->check(CLI::Range(0, 1023));
   cmd->add_flag("--no-qdisc-bypass", o->no_qdisc_bypass,
                 "Send through the qdisc layer (so tc sees replies); default bypasses it");
   cmd->callback([o] {
