@@ -8,6 +8,7 @@ enum ExitCode : int {
   kExitBadArguments = 2,     // bad option or value, unknown product
   kExitNoInterface = 3,      // the interface does not exist or is down
   kExitNotPermitted = 4,     // missing privileges (EPERM/EACCES): root or CAP_NET_RAW needed
+  kExitMissingTool = 5,      // a program vdrive runs is not installed (gnuplot for `plot`)
 };
 
 }  // namespace vdrive::cli

@@ -1,4 +1,5 @@
-// The `vdrive` command: subcommands, one file each; this file maps every way out to a one-line
+// The `vdrive` command: subcommands, one file each; this file adds what every subcommand shares
+// (--config, --log-level: config_file.hpp, log_level.hpp) and maps every way out to a one-line
 // message on stderr and an exit code (see exit_codes.hpp and docs/cli.md).
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -6,13 +7,18 @@
 #include <algorithm>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/config_file.hpp"
 #include "vdrive/cli/demo_command.hpp"
 #include "vdrive/cli/esi_command.hpp"
 #include "vdrive/cli/fault_command.hpp"
+#include "vdrive/cli/help_examples.hpp"
 #include "vdrive/cli/list_drives_command.hpp"
+#include "vdrive/cli/log_level.hpp"
 #include "vdrive/cli/od_command.hpp"
+#include "vdrive/cli/plot_command.hpp"
 #include "vdrive/cli/run_command.hpp"
 #include "vdrive/cli/scenario_command.hpp"
 #include "vdrive/cli/sii_command.hpp"
@@ -32,6 +38,9 @@ int main(int argc, char** argv) {
   CLI::App app{"vdrive: virtual EtherCAT servo drives", "vdrive"};
   app.set_version_flag("--version", "vdrive " VDRIVE_VERSION);
   app.require_subcommand(0, 1);
+  // Inherited by the subcommands: an option they do not know (--config, a top-level
+  // --log-level) is the top level's, wherever it stands on the line.
+  app.fallthrough();
   add_run_command(app);
   add_list_drives_command(app);
   add_demo_command(app);
@@ -40,13 +49,21 @@ int main(int argc, char** argv) {
   add_sii_command(app);
   add_scenario_command(app);
   add_fault_command(app);
+  add_plot_command(app);
+  // After every subcommand (add new ones above): each gets --log-level and its help footer.
+  add_log_level_options(app);
+  add_help_examples(app);
 
+  const std::vector<std::string> args(argv + std::min(argc, 1), argv + argc);
+  ConfigFile config;
   try {
+    config.add_to(app, args);
     app.parse(argc, argv);
     // Checked here rather than with require_subcommand(1) so that an unknown option is named
-    // first (CLI11 checks requirements before leftovers).
+    // first.
     if (app.get_subcommands().empty()) {
-      return fail(kExitBadArguments, "no command given (run, demo, scenario, fault, list-drives, od, sii, esi; see vdrive --help)");
+      return fail(kExitBadArguments,
+                  "no command given (run, demo, scenario, fault, plot, list-drives, od, sii, esi; see vdrive --help)");
     }
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
@@ -56,7 +73,10 @@ int main(int argc, char** argv) {
     }
     return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
-    return fail(kExitBadArguments, std::string(e.what()) + " (see vdrive --help)");
+    // An unknown option is named first: CLI11 checks required options before leftovers.
+    if (const std::vector<std::string> extra = app.remaining(true); !extra.empty() && e.get_name() == "RequiredError")
+      return fail(kExitBadArguments, std::string(CLI::ExtrasError(extra).what()) + " (see vdrive --help)");
+    return fail(kExitBadArguments, config.explain(e, args) + " (see vdrive --help)");
   } catch (const CliError& e) {
     return fail(e.exit_code(), e.what());
   } catch (const std::exception& e) {

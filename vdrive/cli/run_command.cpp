@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/run_status.hpp"
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/control_socket.hpp"
 #include "vdrive/control/fault_service.hpp"
@@ -41,7 +42,6 @@ struct RunOptions {
   std::string tap;
   std::vector<std::string> drives;
   Nanos hop_delay = 500;
-  std::string log_level = "info";
   std::string profile_dir;
   bool no_qdisc_bypass = false;
   int rt_priority = 0;  // 0: normal scheduling
@@ -51,6 +51,7 @@ struct RunOptions {
   std::string control;              // runtime control socket; empty: default_control_path()
   std::uint64_t fault_seed = 1;     // wire impairment's generator
   bool no_control = false;
+  StatusMode status = StatusMode::automatic;  // --status / --no-status
 };
 
 // Runtime control: a request line from the socket's thread -> the loop -> a reply line.
@@ -161,9 +162,7 @@ std::unique_ptr<link::Link> open_link(const RunOptions& o) {
 
 void run(const RunOptions& o) {
   check_products(o);
-  // Logs go to stderr so stdout stays free for anything a script wants to parse.
-  spdlog::set_default_logger(spdlog::stderr_color_mt("vdrive"));
-  spdlog::set_level(spdlog::level::from_str(o.log_level));
+  // Logs go to stderr at --log-level (set up by main for every command, log_level.hpp).
 
   std::unique_ptr<link::Link> link = open_link(o);
   const std::string where = o.tap.empty() ? o.iface : "TAP " + o.tap;
@@ -204,16 +203,18 @@ void run(const RunOptions& o) {
                o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
   if (control) spdlog::info("fault control on {}", control->path());
   runtime::LoopCounters counters;
+  RunStatus status(o.status, *network, counters);  // the live status line (run_status.hpp)
   // Pinned last, so the threads started above (control, telemetry) stay off the serving CPU.
   if (o.cpu >= 0) {
     if (const int err = runtime::pin_to_cpu(o.cpu); err != 0)
       throw CliError(kExitBadArguments, fmt::format("--cpu {}: {}", o.cpu, std::strerror(err)));
   }
   try {
-    runtime::serve(*network, impaired, clock, stop, counters, control ? &faults : nullptr);
+    runtime::serve(*network, impaired, clock, stop, counters, status.wrap(control ? &faults : nullptr));
   } catch (const link::LinkError& e) {  // the interface was removed while serving
     throw CliError(exit_code_for(e.kind()), e.what());
   }
+  status.stop();  // its line ends before the summary
   spdlog::info("stopped: {} frames in, {} out, {} dropped, {} send failures", counters.frames_in.load(),
                counters.frames_out.load(), counters.dropped.load(), counters.send_failed.load());
   for (const fault::Direction d : {fault::Direction::to_slaves, fault::Direction::to_master}) {
@@ -242,8 +243,6 @@ void add_run_command(CLI::App& app) {
       ->take_all();
   cmd->add_option("--hop-delay", o->hop_delay, "Delay per slave and direction in ns (default 500)")
       ->check(CLI::Range(Nanos{0}, Nanos{1'000'000'000}));
-  cmd->add_option("--log-level", o->log_level, "trace, debug, info, warn, error or off (default info)")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
   cmd->add_option("--profile-dir", o->profile_dir,
                   "Load profiles from DIR/<id>/profile.yaml instead of the built-in ones");
   cmd->add_option("--rt-priority", o->rt_priority,
@@ -253,6 +252,7 @@ void add_run_command(CLI::App& app) {
                   "Runtime fault control socket (default $XDG_RUNTIME_DIR/vdrive/IFACE.sock, /run/vdrive/IFACE.sock "
                   "for root, else /tmp/vdrive-UID/IFACE.sock); see vdrive fault");
   cmd->add_flag("--no-control", o->no_control, "Serve without the runtime control socket")->excludes(control);
+  add_status_options(cmd, o->status);
   cmd->add_option("--fault-seed", o->fault_seed, "Seed of the random wire faults (drop, corrupt, ...; default 1)");
   cmd->add_option("--busy-poll-us", o->busy_poll_us,
                   "Raw socket: spin up to US microseconds for the next frame before sleeping (default 0: sleep at once)")

@@ -1,0 +1,189 @@
+#include "vdrive/cli/plot_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/gnuplot_script.hpp"
+#include "vdrive/cli/trace_csv.hpp"
+
+extern char** environ;
+
+namespace vdrive::cli {
+namespace {
+
+struct PlotOptions {
+  std::string trace;
+  std::string output;
+  std::optional<int> slave;
+  std::string title;
+  std::string size = "1200x900";
+};
+
+constexpr int kMinSide = 200, kMaxSide = 10000;
+
+std::pair<int, int> parse_size(const std::string& text) {
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex(R"((\d{1,5})x(\d{1,5}))")))
+    throw CliError(kExitBadArguments, fmt::format("--size '{}': expected WIDTHxHEIGHT in pixels, e.g. 1200x900", text));
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < kMinSide || w > kMaxSide || h < kMinSide || h > kMaxSide)
+    throw CliError(kExitBadArguments, fmt::format("--size '{}': width and height must be {}..{} pixels", text, kMinSide, kMaxSide));
+  return {w, h};
+}
+
+// A private directory for the data and script files, removed with everything in it.
+class TempDir {
+public:
+  TempDir() {
+    const char* tmp = std::getenv("TMPDIR");
+    std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/vdrive-plot-XXXXXX";
+    if (::mkdtemp(pattern.data()) == nullptr)
+      throw CliError(kExitFailure, fmt::format("cannot create a temporary directory '{}': {}", pattern, std::strerror(errno)));
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string file(const char* name) const { return path_ + "/" + name; }
+
+private:
+  std::string path_;
+};
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out.flush()) throw CliError(kExitFailure, fmt::format("cannot write '{}'", path));
+}
+
+std::string first_line_of(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  // gnuplot repeats the offending script line before its message; the message is what helps.
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" ^") != std::string::npos) last = line;
+  return last;
+}
+
+// Runs `gnuplot SCRIPT` (no shell), its output into LOG. $VDRIVE_GNUPLOT names another program.
+void run_gnuplot(const std::string& script, const std::string& log) {
+  const char* env = std::getenv("VDRIVE_GNUPLOT");
+  const std::string program = env != nullptr && *env != '\0' ? env : "gnuplot";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::string arg0 = program, arg1 = script;
+  char* argv[] = {arg0.data(), arg1.data(), nullptr};
+  pid_t pid = 0;
+  const int err = ::posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (err == ENOENT)
+    throw CliError(kExitMissingTool, fmt::format("'{}' not found: plot needs gnuplot (Debian package gnuplot-nox)", program));
+  if (err != 0) throw CliError(kExitFailure, fmt::format("cannot run '{}': {}", program, std::strerror(err)));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    const std::string why = first_line_of(log);
+    throw CliError(kExitFailure, WIFEXITED(status) ? fmt::format("{} failed (exit {}): {}", program, WEXITSTATUS(status), why)
+                                                   : fmt::format("{} was killed by signal {}", program, WTERMSIG(status)));
+  }
+}
+
+void run(const PlotOptions& o) {
+  const auto [width, height] = parse_size(o.size);
+  TraceCsv trace;
+  try {
+    trace = read_trace_csv(o.trace);
+  } catch (const TraceCsvError& e) {
+    throw CliError(kExitBadArguments, e.what());
+  }
+  std::vector<const SlaveSeries*> series;
+  std::vector<int> numbers;
+  for (const SlaveSeries& s : trace.slaves) {
+    if (o.slave && s.slave != *o.slave) continue;
+    series.push_back(&s);
+    numbers.push_back(s.slave);
+  }
+  if (series.empty()) {
+    std::vector<int> present;
+    for (const SlaveSeries& s : trace.slaves) present.push_back(s.slave);
+    throw CliError(kExitBadArguments, fmt::format("--slave {}: {} has slave(s) {}", *o.slave, o.trace, fmt::join(present, ", ")));
+  }
+
+  const std::string output = o.output.empty() ? std::filesystem::path(o.trace).replace_extension(".png").string() : o.output;
+  {  // gnuplot only warns about an output it cannot open; find out first and say so.
+    std::ofstream probe(output, std::ios::binary | std::ios::app);
+    if (!probe) throw CliError(kExitFailure, fmt::format("-o: cannot write '{}': {}", output, std::strerror(errno)));
+  }
+  TempDir dir;
+  PlotSpec spec;
+  spec.data_file = dir.file("trace.dat");
+  spec.output = output;
+  spec.width = width;
+  spec.height = height;
+  spec.title = o.title;
+  {
+    std::ofstream data(spec.data_file);
+    write_gnuplot_data(data, series);
+    if (!data.flush()) throw CliError(kExitFailure, fmt::format("cannot write '{}'", spec.data_file));
+  }
+  write_text(dir.file("plot.gp"), gnuplot_script(spec, numbers));
+  run_gnuplot(dir.file("plot.gp"), dir.file("gnuplot.log"));
+  std::error_code ec;
+  if (std::filesystem::file_size(output, ec) == 0 || ec)
+    throw CliError(kExitFailure, fmt::format("gnuplot wrote nothing to '{}': {}", output, first_line_of(dir.file("gnuplot.log"))));
+  const double t0 = series.front()->time_s.front(), t1 = series.front()->time_s.back();
+  fmt::print("{}: slave(s) {}, {:.3f} to {:.3f} s\n", output, fmt::join(numbers, ", "), t0, t1);
+}
+
+}  // namespace
+
+void add_plot_command(CLI::App& app) {
+  auto o = std::make_shared<PlotOptions>();
+  CLI::App* cmd = app.add_subcommand("plot", "Plot position, velocity, torque and following error of a trace CSV (PNG)");
+  cmd->add_option("trace", o->trace, "Trace CSV: vdrive scenario run --trace, or a telemetry CSV")
+      ->required()
+      ->type_name("TRACE.csv");
+  cmd->add_option("--output,-o", o->output, "PNG file to write (default: TRACE with .png instead of .csv)")
+      ->type_name("FILE");
+  cmd->add_option("--slave", o->slave, "Only this slave (1 = first in cable order); default: every slave")
+      ->type_name("K")
+      ->check(CLI::Range(1, 65535).description(""));
+  cmd->add_option("--title", o->title, "Title above the panels")->type_name("TEXT");
+  cmd->add_option("--size", o->size, "Image size in pixels, WIDTHxHEIGHT (200..10000 each)")
+      ->type_name("WxH")
+      ->capture_default_str();
+  cmd->footer(
+      "Examples:\n"
+      "  vdrive scenario run scenarios/modes_csp.yaml --trace csp.csv\n"
+      "  vdrive plot csp.csv -o csp.png --title 'csp, 3 drives'\n"
+      "  vdrive plot csp.csv --slave 2 --size 1600x1000\n"
+      "Needs gnuplot (Debian gnuplot-nox); $VDRIVE_GNUPLOT names another gnuplot program.");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace vdrive::cli

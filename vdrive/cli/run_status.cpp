@@ -1,0 +1,71 @@
+#include "vdrive/cli/run_status.hpp"
+
+#include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <optional>
+
+#include "vdrive/network/network.hpp"
+
+namespace vdrive::cli {
+namespace {
+
+constexpr Nanos kPublishPeriod = 100'000'000;  // the loop samples the ESCs 10 times a second
+constexpr auto kTerminalPeriod = std::chrono::milliseconds(250);
+constexpr auto kLogPeriod = std::chrono::milliseconds(1000);
+
+Nanos steady_now() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+void add_status_options(CLI::App* cmd, StatusMode& mode) {
+  CLI::Option* on = cmd->add_flag_callback("--status", [&mode] { mode = StatusMode::on; },
+                                           "Show the live status line on stderr even when it is not a terminal (one line a second)");
+  CLI::Option* off = cmd->add_flag_callback("--no-status", [&mode] { mode = StatusMode::off; },
+                                            "No live status line (default: shown when stderr is a terminal)");
+  on->excludes(off);
+}
+
+RunStatus::RunStatus(StatusMode mode, network::Network& network, const runtime::LoopCounters& counters)
+    : terminal_(::isatty(STDERR_FILENO) != 0), network_(network), counters_(counters), status_(network.size()) {
+  enabled_ = mode == StatusMode::on || (mode == StatusMode::automatic && terminal_);
+}
+
+RunStatus::~RunStatus() { stop(); }
+
+void RunStatus::stop() {
+  stop_.store(true);
+  if (thread_.joinable()) thread_.join();
+}
+
+runtime::LoopService* RunStatus::wrap(runtime::LoopService* next) {
+  if (!enabled_) return next;
+  publisher_ = std::make_unique<runtime::LineStatusPublisher>(network_, status_, kPublishPeriod, next);
+  publisher_->sample();  // before the loop runs: the thread may read at once
+  thread_ = std::thread([this] { print_loop(); });
+  return publisher_.get();
+}
+
+void RunStatus::print_loop() {
+  const auto period = terminal_ ? kTerminalPeriod : kLogPeriod;
+  std::optional<runtime::StatusSample> before;
+  auto next = std::chrono::steady_clock::now();
+  while (!stop_.load()) {
+    next += period;
+    while (!stop_.load() && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (stop_.load()) break;
+    runtime::StatusSample now = runtime::take_sample(status_, counters_, steady_now());
+    const std::string line = runtime::format_status_line(now, before ? &*before : nullptr);
+    if (terminal_) std::fprintf(stderr, "\r%s\033[K", line.c_str());
+    else std::fprintf(stderr, "status: %s\n", line.c_str());
+    std::fflush(stderr);
+    before = std::move(now);
+  }
+  if (terminal_ && before) std::fprintf(stderr, "\n");
+}
+
+}  // namespace vdrive::cli

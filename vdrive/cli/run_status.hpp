@@ -1,0 +1,48 @@
+#pragma once
+// `vdrive run`'s live status line (docs/cli.md "Status line"): per slave AL state and error,
+// frames in/out and per second, ESC receive errors, dropped frames. On stderr, rewritten in
+// place 4 times a second when stderr is a terminal; `--status` forces it (not a terminal: one
+// line a second), `--no-status` turns it off. The loop's side is a runtime::LineStatusPublisher
+// (no lock, no allocation); a thread of its own formats and prints.
+#include <atomic>
+#include <memory>
+#include <thread>
+
+#include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/runtime/line_status.hpp"
+
+namespace CLI { class App; }
+
+namespace vdrive::cli {
+
+enum class StatusMode { automatic, on, off };
+
+void add_status_options(CLI::App* cmd, StatusMode& mode);
+
+class RunStatus {
+public:
+  RunStatus(StatusMode mode, network::Network& network, const runtime::LoopCounters& counters);
+  ~RunStatus();  // stops the thread and ends the line
+  RunStatus(const RunStatus&) = delete;
+  RunStatus& operator=(const RunStatus&) = delete;
+
+  // The service to serve with: the status publisher in front of `next` (and the printing thread
+  // started), or `next` itself when the status line is off.
+  runtime::LoopService* wrap(runtime::LoopService* next);
+  // Stops the thread and ends the line (also done by the destructor).
+  void stop();
+
+private:
+  void print_loop();
+
+  bool enabled_ = false;
+  bool terminal_ = false;
+  network::Network& network_;
+  const runtime::LoopCounters& counters_;
+  runtime::LineStatus status_;
+  std::unique_ptr<runtime::LineStatusPublisher> publisher_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace vdrive::cli

@@ -1,0 +1,30 @@
+#pragma once
+// A trace CSV as `vdrive plot` reads it: the scenario trace (vdrive/scenario/trace_writer.hpp) or
+// the telemetry CSV. Columns are found by their header name, not their position, so both read
+// alike: time (`time_ns`, or `time_s`), `slave`, `position`, `velocity`, `torque`,
+// `following_error`; other columns are ignored. Rows come back grouped per slave, in file order.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vdrive::cli {
+
+struct SlaveSeries {
+  int slave = 0;
+  std::vector<double> time_s, position, velocity, torque, following_error;
+};
+
+struct TraceCsv {
+  std::vector<SlaveSeries> slaves;  // ascending slave number
+};
+
+// "FILE: what" or "FILE:LINE: what": a missing file, no header, a missing column, a value that
+// is not a number, no rows.
+class TraceCsvError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+TraceCsv read_trace_csv(const std::string& path);
+
+}  // namespace vdrive::cli

@@ -1,0 +1,107 @@
+#include "vdrive/runtime/line_status.hpp"
+
+#include <fmt/format.h>
+
+#include <limits>
+#include <map>
+
+#include "vdrive/network/network.hpp"
+
+namespace vdrive::runtime {
+namespace {
+
+constexpr std::uint16_t kAlStatus = 0x0130, kAlStatusCode = 0x0134;
+constexpr std::uint16_t kErrorCountersFirst = 0x0300, kErrorCountersLast = 0x030C;
+constexpr std::uint16_t kAlErrorFlag = 0x10;
+constexpr std::size_t kSlavesShownOneByOne = 8;
+
+std::uint16_t peek16(esc::Esc& esc, std::uint16_t address) {
+  return static_cast<std::uint16_t>(esc.peek(address) | esc.peek(static_cast<std::uint16_t>(address + 1)) << 8);
+}
+
+std::string slave_text(const SlaveStatus& s) {
+  std::string text = al_state_name(s.al_status);
+  if (s.al_status & kAlErrorFlag) text += fmt::format("+E({:04X})", s.al_status_code);
+  return text;
+}
+
+}  // namespace
+
+void LineStatusPublisher::sample() {
+  for (std::size_t i = 0; i < status_.slaves(); ++i) {
+    esc::Esc& esc = network_.esc(i);
+    SlaveStatus s;
+    s.al_status = peek16(esc, kAlStatus);
+    s.al_status_code = peek16(esc, kAlStatusCode);
+    for (std::uint16_t a = kErrorCountersFirst; a <= kErrorCountersLast; ++a) s.rx_errors += esc.peek(a);
+    status_.publish(i, s);
+  }
+}
+
+void LineStatusPublisher::poll(Nanos now) {
+  if (now >= due_) {
+    sample();
+    due_ = now + period_;
+  }
+  if (next_ != nullptr) next_->poll(now);
+}
+
+Nanos LineStatusPublisher::next_deadline() const {
+  const Nanos next = next_ != nullptr ? next_->next_deadline() : std::numeric_limits<Nanos>::max();
+  return next < due_ ? next : due_;
+}
+
+StatusSample take_sample(const LineStatus& status, const LoopCounters& counters, Nanos now) {
+  StatusSample s;
+  s.time = now;
+  for (std::size_t i = 0; i < status.slaves(); ++i) s.slaves.push_back(status.slave(i));
+  s.frames_in = counters.frames_in.load(std::memory_order_relaxed);
+  s.frames_out = counters.frames_out.load(std::memory_order_relaxed);
+  s.dropped = counters.dropped.load(std::memory_order_relaxed);
+  s.send_failed = counters.send_failed.load(std::memory_order_relaxed);
+  return s;
+}
+
+std::string al_state_name(std::uint16_t al_status) {
+  switch (al_status & 0x0F) {
+    case 1: return "Init";
+    case 2: return "PreOp";
+    case 3: return "Boot";
+    case 4: return "SafeOp";
+    case 8: return "Op";
+    default: return fmt::format("0x{:X}", al_status & 0x0F);
+  }
+}
+
+std::string format_status_line(const StatusSample& now, const StatusSample* before) {
+  std::string line = fmt::format("{} slave{}", now.slaves.size(), now.slaves.size() == 1 ? "" : "s");
+  std::uint64_t rx_errors = 0;
+  for (const SlaveStatus& s : now.slaves) rx_errors += s.rx_errors;
+  if (now.slaves.size() <= kSlavesShownOneByOne) {
+    for (std::size_t i = 0; i < now.slaves.size(); ++i) line += fmt::format(" {}:{}", i + 1, slave_text(now.slaves[i]));
+  } else {
+    std::map<std::string, std::size_t> counts;
+    std::size_t first_error = 0;
+    for (std::size_t i = 0; i < now.slaves.size(); ++i) {
+      const SlaveStatus& s = now.slaves[i];
+      ++counts[al_state_name(s.al_status) + (s.al_status & kAlErrorFlag ? "+E" : "")];
+      if ((s.al_status & kAlErrorFlag) && first_error == 0) first_error = i + 1;
+    }
+    const char* sep = " ";
+    for (const auto& [state, n] : counts) {
+      line += fmt::format("{}{} {}", sep, state, n);
+      sep = ", ";
+    }
+    if (first_error != 0)
+      line += fmt::format(" (first error: {} {:04X})", first_error, now.slaves[first_error - 1].al_status_code);
+  }
+  line += fmt::format(" | frames {} in {} out", now.frames_in, now.frames_out);
+  if (before != nullptr && now.time > before->time && now.frames_in >= before->frames_in) {
+    const double seconds = static_cast<double>(now.time - before->time) / 1e9;
+    line += fmt::format(", {:.0f}/s", static_cast<double>(now.frames_in - before->frames_in) / seconds);
+  }
+  line += fmt::format(" | rx errors {} | dropped {} | send failed {}", rx_errors, now.dropped, now.send_failed);
+  return line;
+}
+
+}  // namespace vdrive::runtime
