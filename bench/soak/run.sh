@@ -11,6 +11,10 @@
 #     seconds (default 5) after the master reported Op. Start-up (profiles, dictionaries, plants,
 #     first touches of stacks and buffers) happens before that; anything that grows with time in
 #     Op (a leak, a growing queue or log buffer) shows as a steady climb past the slack.
+# The drives' verdicts from the sine program (following error within 6065h, no fault) are reported
+# in result.txt but are not a check here: on a loaded host a master cycle can start tens of ms
+# late (veth delivery runs in ksoftirqd), and a drive then rightly reports a following error or a
+# sync fault. vdrive-master exits 2 for that; the soak accepts exit 2 only with a clean summary.
 #
 # Usage: bash bench/soak/run.sh [SECONDS] [BUILD_DIR] [OUT_DIR]
 #   SECONDS default 3600; BUILD_DIR default build/ next to this checkout; OUT_DIR (kept): rss.csv
@@ -84,11 +88,12 @@ stopped=$(grep -o "stopped: .*" "$OUT/vdrive.log" | tail -n 1)
   echo "end: $(date -u '+%Y-%m-%d %H:%M:%S UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "master: exit $master_rc; $summary"
   echo "vdrive: $stopped"
+  grep -E "^drive 0x|worst lateness" "$OUT/master.txt"
   echo "rss: baseline ${baseline:-none} KiB (${BASELINE_S} s after Op), largest after it ${max_after} KiB, at the end ${end_rss:-?} KiB, slack ${RSS_SLACK_KIB} KiB, $(($(wc -l <"$OUT/rss.csv") - 1)) samples"
 } >>"$OUT/result.txt"
 cat "$OUT/result.txt"
 
-[ $master_rc -eq 0 ] || { cat "$OUT/master.err"; fail "vdrive-master op exited $master_rc"; }
+[ $master_rc -eq 0 ] || [ $master_rc -eq 2 ] || { cat "$OUT/master.err"; fail "vdrive-master op exited $master_rc"; }
 echo "$summary" | grep -Eq "^summary: [0-9]+ cycles of 1000 us, working counter [0-9]+ expected, 0 wrong, 0 lost, 0 not all in Op" \
   || fail "the master saw wrong working counters, lost frames or a slave out of Op"
 in=$(echo "$stopped" | sed -n 's/^stopped: \([0-9]*\) frames in, \([0-9]*\) out, \([0-9]*\) dropped, \([0-9]*\) send failures.*/\1 \2 \3 \4/p')
