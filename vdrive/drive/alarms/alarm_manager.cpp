@@ -87,6 +87,7 @@ std::uint16_t AlarmManager::error_code() const {
 
 AlarmManager::Block AlarmManager::blocked(bool al_error_pending, bool fault_reaction_active, Nanos now) const {
   if (fault_reaction_active) return Block::Other;   // L34060
+  if (active_count_ == 0) return Block::None;       // called every control step: skip the table scan
   bool too_young = false;
   const auto& table = ctx_.profile.alarms;
   for (std::size_t i = 0; i < states_.size(); ++i) {
@@ -103,6 +104,7 @@ AlarmManager::Block AlarmManager::blocked(bool al_error_pending, bool fault_reac
 
 bool AlarmManager::reset_allowed(bool al_error_pending, bool fault_reaction_active, Nanos now) const {
   if (blocked(al_error_pending, fault_reaction_active, now) != Block::None) return false;
+  if (active_count_ == 0) return true;
   const auto& table = ctx_.profile.alarms;
   for (std::size_t i = 0; i < states_.size(); ++i)
     if (states_[i].active && !table[i].warning && !table[i].clearable) return false;   // power cycle
