@@ -7,6 +7,12 @@
 #include <cstdio>
 #include <optional>
 
+#include <spdlog/sinks/base_sink.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <mutex>
+
 #include "vdrive/network/network.hpp"
 
 namespace vdrive::cli {
@@ -19,6 +25,22 @@ constexpr auto kLogPeriod = std::chrono::milliseconds(1000);
 Nanos steady_now() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+
+// Put in front of the logger's sinks while the line is drawn on a terminal: a log line first
+// erases the status line, so the log starts at the left and the status is redrawn below it.
+class EraseStatusSink final : public spdlog::sinks::base_sink<std::mutex> {
+public:
+  explicit EraseStatusSink(std::atomic<bool>& drawn) : drawn_(drawn) {}
+
+protected:
+  void sink_it_(const spdlog::details::log_msg&) override {
+    if (drawn_.exchange(false)) std::fputs("\r\033[K", stderr);
+  }
+  void flush_() override {}
+
+private:
+  std::atomic<bool>& drawn_;
+};
 
 }  // namespace
 
@@ -40,12 +62,22 @@ RunStatus::~RunStatus() { stop(); }
 void RunStatus::stop() {
   stop_.store(true);
   if (thread_.joinable()) thread_.join();
+  if (erase_sink_) {
+    auto& sinks = spdlog::default_logger()->sinks();
+    sinks.erase(std::remove(sinks.begin(), sinks.end(), erase_sink_), sinks.end());
+    erase_sink_.reset();
+  }
 }
 
 runtime::LoopService* RunStatus::wrap(runtime::LoopService* next) {
   if (!enabled_) return next;
   publisher_ = std::make_unique<runtime::LineStatusPublisher>(network_, status_, kPublishPeriod, next);
   publisher_->sample();  // before the loop runs: the thread may read at once
+  if (terminal_) {
+    erase_sink_ = std::make_shared<EraseStatusSink>(drawn_);
+    auto& sinks = spdlog::default_logger()->sinks();
+    sinks.insert(sinks.begin(), erase_sink_);
+  }
   thread_ = std::thread([this] { print_loop(); });
   return publisher_.get();
 }
@@ -60,12 +92,15 @@ void RunStatus::print_loop() {
     if (stop_.load()) break;
     runtime::StatusSample now = runtime::take_sample(status_, counters_, steady_now());
     const std::string line = runtime::format_status_line(now, before ? &*before : nullptr);
-    if (terminal_) std::fprintf(stderr, "\r%s\033[K", line.c_str());
+    if (terminal_) {
+      std::fprintf(stderr, "\r%s\033[K", line.c_str());
+      drawn_.store(true);
+    }
     else std::fprintf(stderr, "status: %s\n", line.c_str());
     std::fflush(stderr);
     before = std::move(now);
   }
-  if (terminal_ && before) std::fprintf(stderr, "\n");
+  if (drawn_.exchange(false)) std::fprintf(stderr, "\n");
 }
 
 }  // namespace vdrive::cli

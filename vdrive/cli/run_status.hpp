@@ -3,7 +3,8 @@
 // frames in/out and per second, ESC receive errors, dropped frames. On stderr, rewritten in
 // place 4 times a second when stderr is a terminal; `--status` forces it (not a terminal: one
 // line a second), `--no-status` turns it off. The loop's side is a runtime::LineStatusPublisher
-// (no lock, no allocation); a thread of its own formats and prints.
+// (no lock, no allocation); a thread of its own formats and prints. On a terminal, a log line
+// erases the status line first (a sink put in front of spdlog's), and the status is redrawn below.
 #include <atomic>
 #include <memory>
 #include <thread>
@@ -12,6 +13,7 @@
 #include "vdrive/runtime/line_status.hpp"
 
 namespace CLI { class App; }
+namespace spdlog::sinks { class sink; }
 
 namespace vdrive::cli {
 
@@ -42,6 +44,8 @@ private:
   runtime::LineStatus status_;
   std::unique_ptr<runtime::LineStatusPublisher> publisher_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> drawn_{false};  // the line is on the terminal, no newline after it yet
+  std::shared_ptr<spdlog::sinks::sink> erase_sink_;  // in the logger while the line is drawn on a terminal
   std::thread thread_;
 };
 
