@@ -80,7 +80,7 @@ const std::map<std::string, std::vector<std::string>> kOptions = {
                       "--count", "--abort-code", "--code", "--position", "--load-scale", "--force"}},
     {"fault clear", {"--iface", "--control", "--json", "--all"}},
     {"fault list", {"--iface", "--control", "--json"}},
-    {"plot", {"--output", "--slave", "--title", "--size"}},
+    {"plot", {"--output", "--slave", "--title", "--size", "--from-zero"}},
 };
 
 TEST(CliHelp, EveryCommandIsFound) {

@@ -132,6 +132,29 @@ TEST_F(PlotCommand, ColumnsAreFoundByNameNotPosition) {
   EXPECT_TRUE(a.pixels == b.pixels);
 }
 
+TEST_F(PlotCommand, FromZeroStartsTheTimeAxisAtTheFirstRow) {
+  // The same trace stamped 1000 s later (as a monotonic clock would): with --from-zero both give
+  // the same picture; without it they differ.
+  std::ifstream in(path("csp.csv"));
+  std::ofstream out(path("later.csv"));
+  std::string line;
+  std::getline(in, line);
+  out << line << "\n";
+  while (std::getline(in, line)) {
+    const std::size_t comma = line.find(',');
+    out << std::stoll(line.substr(0, comma)) + 1'000'000'000'000LL << line.substr(comma) << "\n";
+  }
+  out.close();
+  ASSERT_EQ(vdrive({"plot", path("csp.csv"), "-o", path("zero_a.png"), "--from-zero"}).exit_code, 0);
+  ASSERT_EQ(vdrive({"plot", path("later.csv"), "-o", path("zero_b.png"), "--from-zero"}).exit_code, 0);
+  ASSERT_EQ(vdrive({"plot", path("later.csv"), "-o", path("later.png")}).exit_code, 0);
+  const test::PngImage a = test::read_png(path("zero_a.png")), b = test::read_png(path("zero_b.png")),
+                       c = test::read_png(path("later.png"));
+  ASSERT_TRUE(a.error.empty() && b.error.empty() && c.error.empty());
+  EXPECT_TRUE(a.pixels == b.pixels);
+  EXPECT_FALSE(b.pixels == c.pixels);
+}
+
 TEST_F(PlotCommand, DefaultOutputIsTheTraceNameWithPng) {
   fs::copy_file(path("csp.csv"), path("named.csv"), fs::copy_options::overwrite_existing);
   const ProcessResult r = vdrive({"plot", path("named.csv")});

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -35,6 +36,7 @@ struct PlotOptions {
   std::optional<int> slave;
   std::string title;
   std::string size = "1200x900";
+  bool from_zero = false;  // time axis from the first row, for traces stamped with a monotonic clock
 };
 
 constexpr int kMinSide = 200, kMaxSide = 10000;
@@ -121,6 +123,12 @@ void run(const PlotOptions& o) {
   } catch (const TraceCsvError& e) {
     throw CliError(kExitBadArguments, e.what());
   }
+  if (o.from_zero) {
+    double first = trace.slaves.front().time_s.front();
+    for (const SlaveSeries& s : trace.slaves) first = std::min(first, s.time_s.front());
+    for (SlaveSeries& s : trace.slaves)
+      for (double& t : s.time_s) t -= first;
+  }
   std::vector<const SlaveSeries*> series;
   std::vector<int> numbers;
   for (const SlaveSeries& s : trace.slaves) {
@@ -174,6 +182,9 @@ void add_plot_command(CLI::App& app) {
       ->type_name("K")
       ->check(CLI::Range(1, 65535).description(""));
   cmd->add_option("--title", o->title, "Title above the panels")->type_name("TEXT");
+  cmd->add_flag("--from-zero", o->from_zero,
+                "Time axis from the first row (0 s) instead of the file's times, e.g. for a telemetry CSV stamped with "
+                "the host's monotonic clock");
   cmd->add_option("--size", o->size, "Image size in pixels, WIDTHxHEIGHT (200..10000 each)")
       ->type_name("WxH")
       ->capture_default_str();
