@@ -17,6 +17,8 @@
 #include "vdrive/network/network.hpp"
 #include "vdrive/runtime/line_status.hpp"
 
+long test_vdrive_allocation_count();  // firmware_no_allocation_test.cpp counts operator new
+
 namespace vdrive::runtime {
 namespace {
 
@@ -75,6 +77,23 @@ TEST(LineStatus, PublisherPassesPollsToTheServiceItWraps) {
   EXPECT_EQ(publisher.next_deadline(), 30);  // the earlier of the two
   inner.deadline = std::numeric_limits<Nanos>::max();
   EXPECT_EQ(publisher.next_deadline(), 10 + 250 * kMs);
+}
+
+TEST(LineStatus, PublishingOnTheLoopAllocatesNothing) {
+  VirtualClock clock(0);
+  network::Network net(std::vector<std::string>{"a6b", "ds5c1", "ds1000a"}, clock);
+  LineStatus status(net.size());
+  RecordingService inner;
+  inner.polls.reserve(16);
+  LineStatusPublisher publisher(net, status, 100 * kMs, &inner);
+  const long before = test_vdrive_allocation_count();
+  for (int i = 0; i < 10; ++i) {
+    publisher.poll(i * 100 * kMs);  // every one due: samples all three ESCs
+    (void)publisher.next_deadline();
+  }
+  EXPECT_EQ(test_vdrive_allocation_count() - before, 0);
+  EXPECT_EQ(inner.polls.size(), 10u);
+  EXPECT_EQ(status.slave(0).al_status & 0x0F, 1);
 }
 
 TEST(LineStatus, FieldsOfOneSlaveTravelTogether) {
