@@ -22,6 +22,7 @@
 #include "vdrive/cli/run_command.hpp"
 #include "vdrive/cli/scenario_command.hpp"
 #include "vdrive/cli/sii_command.hpp"
+#include "vdrive/cli/telemetry_command.hpp"
 
 namespace {
 
@@ -50,6 +51,7 @@ int main(int argc, char** argv) {
   add_scenario_command(app);
   add_fault_command(app);
   add_plot_command(app);
+  add_telemetry_command(app);
   // After every subcommand (add new ones above): each gets --log-level and its help footer.
   add_log_level_options(app);
   add_help_examples(app);
@@ -63,7 +65,7 @@ int main(int argc, char** argv) {
     // first.
     if (app.get_subcommands().empty()) {
       return fail(kExitBadArguments,
-                  "no command given (run, demo, scenario, fault, plot, list-drives, od, sii, esi; see vdrive --help)");
+                  "no command given (run, demo, scenario, fault, plot, telemetry, list-drives, od, sii, esi; see vdrive --help)");
     }
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
@@ -79,6 +81,10 @@ int main(int argc, char** argv) {
     return fail(kExitBadArguments, config.explain(e, args) + " (see vdrive --help)");
   } catch (const CliError& e) {
     return fail(e.exit_code(), e.what());
+  } catch (const vdrive::profile::ProfileError& e) {
+    // Products from --profile-dir are the user's files; a built-in one failing is a broken build.
+    const bool users = std::any_of(args.begin(), args.end(), [](const std::string& a) { return a.rfind("--profile-dir", 0) == 0; });
+    return fail(users ? kExitBadArguments : kExitFailure, e.what());
   } catch (const std::exception& e) {
     return fail(kExitFailure, e.what());
   }

@@ -17,6 +17,7 @@
 
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/run_status.hpp"
+#include "vdrive/cli/telemetry_command.hpp"
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/control_socket.hpp"
 #include "vdrive/control/fault_service.hpp"
@@ -52,6 +53,7 @@ struct RunOptions {
   std::uint64_t fault_seed = 1;     // wire impairment's generator
   bool no_control = false;
   StatusMode status = StatusMode::automatic;  // --status / --no-status
+  RunTelemetryOptions telemetry;   // --telemetry: DDS telemetry (docs/telemetry.md)
 };
 
 // Runtime control: a request line from the socket's thread -> the loop -> a reply line.
@@ -204,13 +206,16 @@ void run(const RunOptions& o) {
   if (control) spdlog::info("fault control on {}", control->path());
   runtime::LoopCounters counters;
   RunStatus status(o.status, *network, counters);  // the live status line (run_status.hpp)
+  const std::unique_ptr<telemetry::LineTelemetry> telemetry =
+      start_run_telemetry(o.telemetry, *network, impaired, clock, counters, &faults, [&waker] { waker.wake(); });
   // Pinned last, so the threads started above (control, telemetry) stay off the serving CPU.
   if (o.cpu >= 0) {
     if (const int err = runtime::pin_to_cpu(o.cpu); err != 0)
       throw CliError(kExitBadArguments, fmt::format("--cpu {}: {}", o.cpu, std::strerror(err)));
   }
   try {
-    runtime::serve(*network, impaired, clock, stop, counters, status.wrap(control ? &faults : nullptr));
+    if (telemetry) runtime::serve(*network, telemetry->link(), clock, stop, counters, status.wrap(&telemetry->service()));
+    else runtime::serve(*network, impaired, clock, stop, counters, status.wrap(control ? &faults : nullptr));
   } catch (const link::LinkError& e) {  // the interface was removed while serving
     throw CliError(exit_code_for(e.kind()), e.what());
   }
@@ -254,6 +259,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--no-control", o->no_control, "Serve without the runtime control socket")->excludes(control);
   add_status_options(cmd, o->status);
   cmd->add_option("--fault-seed", o->fault_seed, "Seed of the random wire faults (drop, corrupt, ...; default 1)");
+  add_run_telemetry_options(cmd, o->telemetry);
   cmd->add_option("--busy-poll-us", o->busy_poll_us,
                   "Raw socket: spin up to US microseconds for the next frame before sleeping (default 0: sleep at once)")
       ->check(CLI::Range(0L, 1'000'000L));

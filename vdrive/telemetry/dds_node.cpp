@@ -28,8 +28,10 @@ dds::TypeSupport type_of(Topic t) {
 }
 
 // Every topic is reliable (a subscriber that keeps up sees every sample, which the rate test
-// counts; ROS 2's default subscription is reliable too). Events are transient-local so a late
-// subscriber gets the recent ones; samples are volatile (only the present matters).
+// counts; ROS 2's default subscription is reliable too). Samples are volatile (only the present
+// matters). Events are transient-local so a late subscriber gets the recent ones. So are control
+// requests and replies: discovery is not symmetric, so a request or reply written before the
+// other end has matched the writer would otherwise be lost; a client's requests die with it.
 struct TopicQos {
   bool transient_local = false;
   int depth = 0;
@@ -41,7 +43,7 @@ TopicQos qos_of(Topic t) {
     case Topic::bus_state: return {false, 100};
     case Topic::events: return {true, 100};
     case Topic::control_request:
-    case Topic::control_reply: return {false, 10};
+    case Topic::control_reply: return {true, 10};
   }
   return {};
 }

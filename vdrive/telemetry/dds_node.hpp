@@ -7,16 +7,10 @@
 #include <fastdds/dds/subscriber/DataReader.hpp>
 
 #include <array>
-#include <stdexcept>
 
 #include "vdrive/telemetry/topics.hpp"
 
 namespace vdrive::telemetry {
-
-class DdsError : public std::runtime_error {
-public:
-  using std::runtime_error::runtime_error;
-};
 
 class DdsNode {
 public:

@@ -27,6 +27,12 @@ public:
   using std::invalid_argument::invalid_argument;
 };
 
+// DDS could not start: no participant, topic, reader or writer.
+class DdsError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
 // The option if given, else $ROS_DOMAIN_ID if set, else 0. Throws DomainError naming the source
 // of a value that is not an integer in 0..kMaxDomain.
 int resolve_domain(std::optional<int> option);

@@ -1,0 +1,318 @@
+#include "vdrive/cli/telemetry_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "vdrive/cli/cli_error.hpp"
+#include "vdrive/control/control_protocol.hpp"
+#include "vdrive/runtime/stop_signal.hpp"
+#include "vdrive/telemetry/sampler.hpp"
+#include "vdrive/telemetry/telemetry_client.hpp"
+#include "vdrive/telemetry/topics.hpp"
+
+namespace vdrive::cli {
+namespace {
+
+constexpr const char* kAxisHeader =
+    "time_ns,slave,al_state,al_status_code,statusword,controlword,mode,position,velocity,torque,following_error,error_code,"
+    "winding_temperature_c,housing_temperature_c";
+constexpr const char* kEventHeader = "time_ns,slave,kind,value,previous,text";
+constexpr Nanos kViewRefresh = 100'000'000;  // live view: 10 updates per second
+
+int domain_of(std::optional<int> option) {
+  try {
+    return telemetry::resolve_domain(option);
+  } catch (const telemetry::DomainError& e) {
+    throw CliError(kExitBadArguments, e.what());
+  }
+}
+
+std::unique_ptr<telemetry::TelemetryClient> open_client(int domain) {
+  try {
+    return std::make_unique<telemetry::TelemetryClient>(domain);
+  } catch (const telemetry::DdsError& e) {
+    throw CliError(kExitFailure, e.what());
+  }
+}
+
+std::string fmt_temp(double c) { return std::isnan(c) ? std::string() : fmt::format("{:.2f}", c); }
+
+std::string csv_text(std::string s) {
+  for (char& c : s)
+    if (c == '"' || c == '\n') c = '\'';
+  return '"' + s + '"';
+}
+
+const char* state_name(std::uint16_t al) {
+  switch (al & 0x0F) {
+    case 1: return "Init";
+    case 2: return "PreOp";
+    case 3: return "Boot";
+    case 4: return "SafeOp";
+    case 8: return "Op";
+  }
+  return "?";
+}
+
+std::string axis_line(const telemetry::AxisSample& a) {
+  return fmt::format("t={:.3f}s slave {} {}{} sw=0x{:04X} cw=0x{:04X} mode={} pos={} vel={} torque={} ferr={} err=0x{:04X}{}",
+                     static_cast<double>(a.time) * 1e-9, a.slave, state_name(a.al_state), (a.al_state & 0x10) ? "+ERR" : "",
+                     a.statusword, a.controlword, a.mode, a.position, a.velocity, a.torque, a.following_error, a.error_code,
+                     std::isnan(a.winding_c) ? std::string() : fmt::format(" winding={:.1f}C", a.winding_c));
+}
+
+struct WatchOptions {
+  std::optional<int> domain;
+  std::string csv, events_csv;
+  double duration_s = 0.0;  // 0: until Ctrl-C (or --count)
+  std::uint64_t count = 0;  // 0: no limit
+  int slave = 0;            // 0: all
+  bool quiet = false;
+};
+
+void watch(const WatchOptions& o) {
+  const int domain = domain_of(o.domain);
+  std::ofstream csv, events;
+  if (!o.csv.empty()) {
+    csv.open(o.csv);
+    if (!csv) throw CliError(kExitFailure, fmt::format("--csv {}: cannot create the file", o.csv));
+    csv << kAxisHeader << '\n';
+  }
+  if (!o.events_csv.empty()) {
+    events.open(o.events_csv);
+    if (!events) throw CliError(kExitFailure, fmt::format("--events-csv {}: cannot create the file", o.events_csv));
+    events << kEventHeader << '\n';
+  }
+  const std::unique_ptr<telemetry::TelemetryClient> client = open_client(domain);
+  const bool tty = ::isatty(STDOUT_FILENO) == 1;
+  const bool view = !o.quiet && (o.csv.empty() || tty);
+  if (!o.quiet) fmt::print(stderr, "vdrive telemetry: domain {}, {} (Ctrl-C stops)\n", domain, telemetry::topic_name(telemetry::Topic::axis_state));
+
+  std::map<int, telemetry::AxisSample> last_axis;
+  std::map<int, telemetry::BusSample> last_bus;
+  std::map<int, Nanos> last_printed;  // plain lines: per axis, at most one per kViewRefresh
+  std::uint64_t rows = 0;
+  int drawn = 0;  // lines of the live block on the terminal
+  const auto started = std::chrono::steady_clock::now();
+  auto next_draw = started;
+  std::atomic<bool>& stop = runtime::stop_on_termination_signals();
+
+  telemetry::TelemetryHandlers h;
+  h.axis = [&](const telemetry::AxisSample& a) {
+    if (o.slave != 0 && a.slave != o.slave) return;
+    if (o.count != 0 && rows >= o.count) return;
+    ++rows;
+    if (csv.is_open()) {
+      csv << a.time << ',' << a.slave << ',' << a.al_state << ',' << a.al_status_code << ',' << a.statusword << ','
+          << a.controlword << ',' << int{a.mode} << ',' << a.position << ',' << a.velocity << ',' << a.torque << ','
+          << a.following_error << ',' << a.error_code << ',' << fmt_temp(a.winding_c) << ',' << fmt_temp(a.housing_c) << '\n';
+    }
+    last_axis[a.slave] = a;
+    if (view && !tty) {
+      auto [it, fresh] = last_printed.try_emplace(a.slave, a.time);
+      if (fresh || a.time - it->second >= kViewRefresh) {
+        it->second = a.time;
+        fmt::print("{}\n", axis_line(a));
+        std::fflush(stdout);
+      }
+    }
+  };
+  h.bus = [&](const telemetry::BusSample& b) {
+    if (o.slave == 0 || b.slave == o.slave) last_bus[b.slave] = b;
+  };
+  h.event = [&](const telemetry::Event& e) {
+    if (o.slave != 0 && e.slave != 0 && e.slave != o.slave) return;
+    if (events.is_open()) events << e.time << ',' << e.slave << ',' << e.kind << ',' << e.value << ',' << e.previous << ',' << csv_text(e.text) << '\n';
+    if (!o.quiet && !tty) fmt::print("event t={:.3f}s slave {} {}: {}\n", static_cast<double>(e.time) * 1e-9, e.slave, e.kind, e.text);
+    if (!o.quiet && tty) fmt::print(stderr, "\nevent t={:.3f}s slave {} {}: {}\n", static_cast<double>(e.time) * 1e-9, e.slave, e.kind, e.text), drawn = 0;
+  };
+
+  for (;;) {
+    if (stop.load()) break;
+    if (o.count != 0 && rows >= o.count) break;
+    const auto now = std::chrono::steady_clock::now();
+    if (o.duration_s > 0 && now - started >= std::chrono::duration<double>(o.duration_s)) break;
+    client->poll(50'000'000, h);
+    if (view && tty && std::chrono::steady_clock::now() >= next_draw) {
+      next_draw = std::chrono::steady_clock::now() + std::chrono::nanoseconds(kViewRefresh);
+      if (drawn > 0) fmt::print("\x1b[{}F", drawn);  // back to the block's first line
+      drawn = 0;
+      for (const auto& [slave, a] : last_axis) fmt::print("\x1b[2K{}\n", axis_line(a)), ++drawn;
+      for (const auto& [slave, b] : last_bus) {
+        fmt::print("\x1b[2K  bus slave {}: frames in {} out {} dropped {}, rx errors {}, turnaround mean {} ns max {} ns, samples dropped {}\n",
+                   slave, b.frames_in, b.frames_out, b.frames_dropped, b.rx_errors, b.turnaround_mean, b.turnaround_max, b.samples_dropped);
+        ++drawn;
+      }
+      std::fflush(stdout);
+    }
+  }
+  if (!o.quiet) fmt::print(stderr, "vdrive telemetry: {} axis sample(s)\n", rows);
+}
+
+// The control side: one request, its reply, the exit code a refusal maps to.
+struct ControlTarget {
+  std::optional<int> domain;
+  double timeout_s = 5.0;
+};
+
+control::ControlReply request(const ControlTarget& t, const nlohmann::json& req) {
+  const int domain = domain_of(t.domain);
+  const std::unique_ptr<telemetry::TelemetryClient> client = open_client(domain);
+  std::optional<control::ControlReply> reply;
+  try {
+    reply = client->call(req.dump(), static_cast<Nanos>(t.timeout_s * 1e9));
+  } catch (const control::ProtocolError& e) {
+    throw CliError(kExitFailure, fmt::format("garbled reply on {}: {}", telemetry::topic_name(telemetry::Topic::control_reply), e.what()));
+  }
+  if (!reply)
+    throw CliError(kExitFailure, fmt::format("no vdrive answered on {} in DDS domain {} within {:g} s (is vdrive run --telemetry running there?)",
+                                             telemetry::topic_name(telemetry::Topic::control_request), domain, t.timeout_s));
+  switch (reply->status) {
+    case control::ControlReply::Status::ok: return *reply;
+    case control::ControlReply::Status::bad_request: throw CliError(kExitBadArguments, reply->error);
+    case control::ControlReply::Status::denied: throw CliError(kExitNotPermitted, reply->error);
+    case control::ControlReply::Status::failed: break;
+  }
+  throw CliError(kExitFailure, reply->error);
+}
+
+struct InjectOptions {
+  std::string kind;
+  std::optional<int> slave, count;
+  std::optional<std::string> duration, direction, delay, abort_code, code;
+  std::optional<double> probability, position, load_scale, force;
+};
+
+void inject(const ControlTarget& t, const InjectOptions& o) {
+  nlohmann::json f{{"kind", o.kind}};
+  if (o.slave) f["slave"] = *o.slave;
+  if (o.count) f["count"] = *o.count;
+  if (o.duration) f["duration"] = *o.duration;
+  if (o.direction) f["direction"] = *o.direction;
+  if (o.delay) f["delay"] = *o.delay;
+  if (o.abort_code) f["abort_code"] = *o.abort_code;
+  if (o.code) f["code"] = *o.code;
+  if (o.probability) f["probability"] = *o.probability;
+  if (o.position) f["position"] = *o.position;
+  if (o.load_scale) f["load_scale"] = *o.load_scale;
+  if (o.force) f["force"] = *o.force;
+  const control::ControlReply r = request(t, {{"op", "inject"}, {"fault", f}});
+  if (r.id != 0) fmt::print("fault {} injected\n", r.id);
+  else fmt::print("one-shot fault injected\n");
+}
+
+void clear(const ControlTarget& t, const std::string& what) {
+  if (what == "all") {
+    const control::ControlReply r = request(t, {{"op", "clear_all"}});
+    fmt::print("{} fault(s) cleared\n", r.cleared);
+    return;
+  }
+  int id = 0;
+  try {
+    std::size_t used = 0;
+    id = std::stoi(what, &used);
+    if (used != what.size() || id < 1) throw std::invalid_argument(what);
+  } catch (const std::exception&) {
+    throw CliError(kExitBadArguments, fmt::format("telemetry clear '{}': expected a fault id (1, 2, ...) or 'all'", what));
+  }
+  request(t, {{"op", "clear"}, {"id", id}});
+  fmt::print("fault {} cleared\n", id);
+}
+
+void add_target(CLI::App* cmd, ControlTarget& t) {
+  cmd->add_option("--domain", t.domain, "DDS domain id 0..232 (default $ROS_DOMAIN_ID, else 0)");
+  cmd->add_option("--timeout", t.timeout_s, "Seconds to wait for a vdrive to answer (default 5)")->check(CLI::Range(0.1, 3600.0));
+}
+
+}  // namespace
+
+void add_telemetry_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("telemetry", "Live view or CSV of the DDS telemetry of vdrive run --telemetry; control requests");
+  cmd->require_subcommand(0, 1);
+  cmd->footer("Examples:\n"
+              "  vdrive telemetry                                  # live view of every axis in domain $ROS_DOMAIN_ID or 0\n"
+              "  vdrive telemetry --csv axes.csv --duration 10 -q && vdrive plot axes.csv\n"
+              "  vdrive telemetry inject encoder_error --slave 1   # through rt/vdrive/control_request\n"
+              "  vdrive telemetry plant-set --slave 2 --external-load 0.5\n"
+              "Exit 1 also when no vdrive answers a request within --timeout.");
+  auto w = std::make_shared<WatchOptions>();
+  cmd->add_option("--domain", w->domain, "DDS domain id 0..232 (default $ROS_DOMAIN_ID, else 0)");
+  cmd->add_option("--csv", w->csv, "Record per-axis samples to FILE (the scenario trace's columns, plus temperatures)");
+  cmd->add_option("--events-csv", w->events_csv, "Record events to FILE (time_ns,slave,kind,value,previous,text)");
+  cmd->add_option("--duration", w->duration_s, "Stop after S seconds (default: until Ctrl-C)")->check(CLI::Range(0.0, 1e9));
+  cmd->add_option("--count", w->count, "Stop after N axis samples");
+  cmd->add_option("--slave", w->slave, "Only this slave (cable order, from 1)")->check(CLI::Range(1, 65535));
+  cmd->add_flag("--quiet,-q", w->quiet, "No live view (with --csv: record only)");
+  cmd->callback([cmd, w] {
+    if (cmd->get_subcommands().empty()) watch(*w);
+  });
+
+  auto t = std::make_shared<ControlTarget>();
+  auto o = std::make_shared<InjectOptions>();
+  CLI::App* inj = cmd->add_subcommand("inject", "Start a fault through the control topic (kinds: vdrive fault kinds)");
+  add_target(inj, *t);
+  inj->add_option("kind", o->kind, "Fault kind")->required();
+  inj->add_option("--slave", o->slave, "Slave in cable order, 1 = first");
+  inj->add_option("--duration", o->duration, "How long, e.g. 250ms (default: until cleared)");
+  inj->add_option("--probability", o->probability, "Per frame, 0..1 (drop, corrupt, duplicate, reorder; default 1)");
+  inj->add_option("--direction", o->direction, "both, to_slaves or to_master (wire faults; default both)");
+  inj->add_option("--delay", o->delay, "delay: how long every frame is held, e.g. 2ms");
+  inj->add_option("--count", o->count, "lost_reply, duplicate_reply: how many replies (default 1)");
+  inj->add_option("--abort-code", o->abort_code, "sdo_abort: the abort code, e.g. 0x06020000");
+  inj->add_option("--code", o->code, "alarm: an alarm code of the product");
+  inj->add_option("--position", o->position, "collision: the obstacle's load position");
+  inj->add_option("--load-scale", o->load_scale, "load_change: inertia/mass factor");
+  inj->add_option("--force", o->force, "load_change: added external load (N or N m)");
+  inj->callback([t, o] { inject(*t, *o); });
+
+  auto what = std::make_shared<std::string>();
+  CLI::App* clr = cmd->add_subcommand("clear", "End a fault by its id, or 'all'");
+  add_target(clr, *t);
+  clr->add_option("id", *what, "Fault id, or all")->required();
+  clr->callback([t, what] { clear(*t, *what); });
+
+  auto slave = std::make_shared<int>(0);
+  auto load = std::make_shared<double>(0.0);
+  CLI::App* ps = cmd->add_subcommand("plant-set", "Change a plant parameter at run time: the external load on an axis");
+  add_target(ps, *t);
+  ps->add_option("--slave", *slave, "Slave in cable order, 1 = first")->required()->check(CLI::Range(1, 65535));
+  ps->add_option("--external-load", *load, "External force/torque on the load, N or N m (0: none)")->required();
+  ps->callback([t, slave, load] {
+    request(*t, {{"op", "plant_set"}, {"slave", *slave}, {"external_load", *load}});
+    fmt::print("slave {}: external load {:g}\n", *slave, *load);
+  });
+}
+
+void add_run_telemetry_options(CLI::App* run, RunTelemetryOptions& o) {
+  run->add_flag("--telemetry", o.enabled, "Publish DDS telemetry and take control requests (docs/telemetry.md)");
+  run->add_option("--telemetry-rate", o.rate_hz, "Telemetry samples per second per axis (default 100, at most 8000)")
+      ->check(CLI::Range(0.001, telemetry::kMaxRateHz));
+  run->add_option("--domain", o.domain, "DDS domain id 0..232 for --telemetry (default $ROS_DOMAIN_ID, else 0)");
+}
+
+std::unique_ptr<telemetry::LineTelemetry> start_run_telemetry(const RunTelemetryOptions& o, network::Network& network, link::Link& served,
+                                                              const Clock& clock, const runtime::LoopCounters& counters,
+                                                              control::FaultService* faults, std::function<void()> wake) {
+  if (!o.enabled) return nullptr;
+  const int domain = domain_of(o.domain);
+  try {
+    auto t = std::make_unique<telemetry::LineTelemetry>(network, served, clock, counters, faults,
+                                                        telemetry::LineTelemetryOptions{o.rate_hz, domain}, std::move(wake));
+    spdlog::info("telemetry: DDS domain {}, {:g} Hz, topics rt/vdrive/{{axis_state,bus_state,events,control_request,control_reply}}", domain, o.rate_hz);
+    return t;
+  } catch (const telemetry::DdsError& e) {
+    throw CliError(kExitFailure, fmt::format("--telemetry: {}", e.what()));
+  }
+}
+
+}  // namespace vdrive::cli
