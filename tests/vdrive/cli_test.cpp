@@ -121,6 +121,16 @@ TEST(Cli, UnknownProductIsABadArgument) {
   expect_one_error_line(r, "unknown product 'nosuchdrive'");
 }
 
+TEST(Cli, AProductMissingFromTheProfileDirIsABadArgument) {
+  for (const char* command : {"od", "sii", "esi"}) {
+    std::vector<std::string> args = {command, "--drive", "a6b", "--profile-dir", "/nonexistent-vdrive-profiles"};
+    if (std::string(command) == "sii") args.push_back("--hex");
+    const auto r = vdrive(args);
+    EXPECT_EQ(r.exit_code, 2) << command;
+    expect_one_error_line(r, "/nonexistent-vdrive-profiles/a6b/profile.yaml");
+  }
+}
+
 TEST(Cli, MissingInterfaceExitsThree) {
   if (!have_product("a6b")) GTEST_SKIP() << "profile a6b not in this build yet";
   const auto r = vdrive({"run", "--iface", "vdtnosuch0", "--drive", "a6b"});

@@ -22,6 +22,7 @@
 #include "vdrive/cli/run_command.hpp"
 #include "vdrive/cli/scenario_command.hpp"
 #include "vdrive/cli/sii_command.hpp"
+#include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/cli/telemetry_command.hpp"
 
 namespace {
