@@ -40,7 +40,10 @@ ip netns add "$NS_A" && ip netns add "$NS_B" || fail "cannot create namespaces"
 ip netns exec "$NS_A" sleep 600 & PIDS+=($!); PID_A=$!
 ip netns exec "$NS_B" sleep 600 & PIDS+=($!); PID_B=$!
 sleep 0.2
-links_before=$(ip -o link | wc -l)
+# veth-between.sh makes its pair under the temporary names vb<pid>a/vb<pid>b in this namespace;
+# none may be left here (other interfaces come and go: other tests share the host).
+leftovers() { ip -o link | awk -F': ' '{print $2}' | cut -d@ -f1 | grep -E '^vb[0-9]+[ab]$'; }
+[ -z "$(leftovers)" ] || fail "temporary veth names already present: $(leftovers)"
 
 # --- refusals -----------------------------------------------------------------------------------
 expect_exit() {  # CODE TEXT CMD...: the command exits CODE and says TEXT on stderr
@@ -57,7 +60,7 @@ expect_exit 1 "is not running" bash "$VETH" "pid:999999999" e0 "pid:$PID_B" e1
 ip -n "$NS_B" link add taken type veth peer name taken-peer || fail "cannot make an interface in $NS_B"
 expect_exit 1 "already has an interface 'taken'" bash "$VETH" "pid:$PID_A" ecat0 "pid:$PID_B" taken
 ip -n "$NS_B" link del taken
-[ "$(ip -o link | wc -l)" = "$links_before" ] || fail "a refused veth-between left an interface behind"
+[ -z "$(leftovers)" ] || fail "a refused veth-between left an interface behind: $(leftovers)"
 [ -z "$(ip -n "$NS_A" -o link show type veth)" ] || fail "a refused veth-between left a veth in $NS_A"
 echo "ok: veth-between.sh refusals"
 
@@ -82,7 +85,7 @@ for ns in "$NS_A" "$NS_B"; do
   ip -n "$ns" -o link show ecat0 | grep -q "state UP\|,UP" || fail "ecat0 in $ns is not up: $(ip -n "$ns" -o link show ecat0)"
   ip -n "$ns" -d -o link show ecat0 | grep -q " veth " || fail "ecat0 in $ns is not a veth"
 done
-[ "$(ip -o link | wc -l)" = "$links_before" ] || fail "veth-between.sh left an interface in the host namespace"
+[ -z "$(leftovers)" ] || fail "veth-between.sh left an interface in the host namespace: $(leftovers)"
 # The master's end waits for the line to answer (VDRIVE_WAIT_LINE), then scans.
 nsenter -t "$PID_B" -n env PATH="$(dirname "$MASTER"):$PATH" \
   VDRIVE_WAIT_IFACE=ecat0 VDRIVE_WAIT_LINE=1 VDRIVE_WAIT_TIMEOUT=30 \
@@ -92,6 +95,6 @@ for name in MADLN15BE DS5C1 DS1000A-EC; do grep -q "$name" "$WORK/scan.out" || f
 kill -0 $VD 2>/dev/null || { cat "$WORK/vdrive.log"; fail "vdrive run ended"; }
 # A second cable with a name taken on one side is refused and leaves nothing behind.
 expect_exit 1 "already has an interface 'ecat0'" bash "$VETH" "pid:$PID_A" ecat0 "pid:$PID_B" ecat1
-[ "$(ip -o link | wc -l)" = "$links_before" ] || fail "a refused veth-between left an interface behind"
+[ -z "$(leftovers)" ] || fail "a refused veth-between left an interface behind: $(leftovers)"
 echo "ok: entrypoint + veth-between + vdrive run + vdrive-master scan"
 echo PASS
