@@ -1,0 +1,194 @@
+// Sampler on the loop thread, in virtual time: rate decimation, no burst after a late loop, a
+// full queue drops and counts (never blocks), events (AL state, faults, plant_set), and control
+// requests carried out through the queues.
+#include "vdrive/telemetry/sampler.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "plant/plant.hpp"
+#include "vdrive/control/fault_service.hpp"
+#include "vdrive/network/network.hpp"
+#include "vdrive/runtime/event_loop.hpp"
+
+namespace vdrive::telemetry {
+namespace {
+
+using ::testing::HasSubstr;
+
+class SamplerTest : public ::testing::Test {
+protected:
+  // Everything queued, by kind.
+  void drain(Sampler& s) {
+    while (std::optional<Sample> x = s.pop()) {
+      if (const auto* a = std::get_if<AxisSample>(&*x)) axes.push_back(*a);
+      if (const auto* b = std::get_if<BusSample>(&*x)) buses.push_back(*b);
+      if (const auto* e = std::get_if<EventSample>(&*x)) events.push_back(*e);
+    }
+  }
+  // Polls every 1 ms from `from` to `to` (exclusive), as a loop serving 1 ms frames would.
+  void run(Sampler& s, Nanos from, Nanos to) {
+    for (Nanos t = from; t < to; t += 1'000'000) s.poll(t);
+  }
+
+  VirtualClock clock_{0};
+  network::Network net_{std::vector<std::string>{"a6b", "ds5c1"}, clock_};
+  runtime::LoopCounters counters_;
+  std::vector<AxisSample> axes;
+  std::vector<BusSample> buses;
+  std::vector<EventSample> events;
+};
+
+TEST_F(SamplerTest, RejectsRatesOutsideItsRange) {
+  EXPECT_THROW(Sampler(net_, 0.0), std::invalid_argument);
+  EXPECT_THROW(Sampler(net_, -5.0), std::invalid_argument);
+  EXPECT_THROW(Sampler(net_, kMaxRateHz * 2), std::invalid_argument);
+  EXPECT_EQ(Sampler(net_, kMaxRateHz).period(), 125'000);
+}
+
+TEST_F(SamplerTest, SamplesEachAxisAtTheConfiguredRate) {
+  Sampler s(net_, 100.0, SamplerSources{&counters_, nullptr, nullptr});
+  run(s, 0, 1'000'000'000);  // 1000 polls in 1 s
+  drain(s);
+  ASSERT_EQ(axes.size(), 2u * 100u);
+  ASSERT_EQ(buses.size(), 2u * 100u);
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    EXPECT_EQ(axes[i].slave, i % 2 + 1);
+    EXPECT_EQ(axes[i].time, static_cast<Nanos>(i / 2) * 10'000'000);
+  }
+  EXPECT_EQ(s.dropped(), 0u);
+  // The drives' own values: Init, 6041h as the drive has it, the plant's temperatures.
+  EXPECT_EQ(axes[0].al_state & 0x0F, 1);
+  EXPECT_FALSE(std::isnan(axes[0].winding_c));
+  EXPECT_GT(axes[0].winding_c, 0.0);
+}
+
+TEST_F(SamplerTest, ALateLoopSkipsSamplesInsteadOfBursting) {
+  Sampler s(net_, 100.0);
+  s.poll(0);
+  s.poll(35'000'000);  // 3.5 periods late
+  s.poll(36'000'000);
+  drain(s);
+  ASSERT_EQ(axes.size(), 2u * 2u);
+  EXPECT_EQ(axes[2].time, 35'000'000);
+  EXPECT_EQ(s.next_deadline(), 45'000'000);
+}
+
+TEST_F(SamplerTest, AFullQueueDropsAndCountsWithoutBlocking) {
+  Sampler s(net_, 1000.0);
+  // 4 samples per period (2 axes + 2 bus) -> 1100 periods queue 4400 into 4096 slots.
+  for (Nanos t = 0; t < 1'100'000'000; t += 1'000'000) s.poll(t);
+  EXPECT_EQ(s.dropped(), 4u * 1100u - Sampler::kQueueSize);
+  drain(s);
+  EXPECT_EQ(axes.size() + buses.size() + events.size(), Sampler::kQueueSize);
+  // Room again: sampling goes on, and the bus state reports the losses.
+  axes.clear();
+  buses.clear();
+  s.poll(1'100'000'000);
+  drain(s);
+  ASSERT_EQ(buses.size(), 2u);
+  EXPECT_EQ(axes.size(), 2u);
+  EXPECT_EQ(buses[0].samples_dropped, 4u * 1100u - Sampler::kQueueSize);
+}
+
+TEST_F(SamplerTest, TurnaroundOfThePeriodAndLineCounters) {
+  TurnaroundStats t;
+  Sampler s(net_, 100.0, SamplerSources{&counters_, &t, nullptr});
+  counters_.frames_in = 7;
+  counters_.frames_out = 6;
+  t.add(4000);
+  t.add(2000);
+  t.add(6000);
+  s.poll(0);
+  s.poll(10'000'000);  // a period without frames
+  drain(s);
+  ASSERT_EQ(buses.size(), 4u);
+  EXPECT_EQ(buses[0].frames_in, 7u);
+  EXPECT_EQ(buses[0].frames_out, 6u);
+  EXPECT_EQ(buses[0].turnaround_last, 6000);
+  EXPECT_EQ(buses[0].turnaround_min, 2000);
+  EXPECT_EQ(buses[0].turnaround_mean, 4000);
+  EXPECT_EQ(buses[0].turnaround_max, 6000);
+  EXPECT_EQ(buses[1].turnaround_max, 6000);  // the same period for every slave
+  EXPECT_EQ(buses[2].turnaround_max, 0);
+}
+
+TEST_F(SamplerTest, FaultRequestsGoToTheHandlerAndFaultsBecomeEvents) {
+  control::FaultService faults(net_, nullptr, nullptr);
+  Sampler s(net_, 100.0, SamplerSources{nullptr, nullptr, &faults.injector()});
+  s.set_fault_handler([&faults](const control::ControlRequest& r, Nanos now) { return faults.handle(r, now); });
+  s.poll(0);
+  TelemetryRequest r = parse_telemetry_request(R"({"op":"inject","fault":{"kind":"encoder_error","slave":1}})");
+  r.ticket = 42;
+  ASSERT_TRUE(s.request(std::move(r)));
+  s.poll(1'000'000);
+  const std::optional<TelemetryReply> reply = s.reply();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(reply->ticket, 42u);
+  ASSERT_TRUE(reply->reply.ok()) << reply->reply.error;
+  EXPECT_EQ(reply->reply.id, 1);
+  s.poll(10'000'000);  // the next sample notices the fault
+  ASSERT_TRUE(s.request(parse_telemetry_request(R"({"op":"clear","id":1})")));
+  s.poll(11'000'000);
+  ASSERT_TRUE(s.reply());
+  s.poll(20'000'000);
+  drain(s);
+  std::vector<std::string> kinds;
+  for (const EventSample& e : events) kinds.push_back(event_kind_name(e.kind));
+  EXPECT_THAT(kinds, ::testing::Contains("fault_injected"));
+  EXPECT_THAT(kinds, ::testing::Contains("fault_cleared"));
+  for (const EventSample& e : events) {
+    if (e.kind == EventKind::fault_injected) {
+      EXPECT_EQ(e.slave, 1);
+      EXPECT_EQ(e.value, 1u);
+      EXPECT_STREQ(e.text.data(), "fault 1 encoder_error started");
+    }
+  }
+}
+
+TEST_F(SamplerTest, WithoutAFaultHandlerFaultRequestsAreRefused) {
+  Sampler s(net_, 100.0);
+  ASSERT_TRUE(s.request(parse_telemetry_request(R"({"op":"clear_all"})")));
+  s.poll(0);
+  const std::optional<TelemetryReply> reply = s.reply();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(reply->reply.status, control::ControlReply::Status::failed);
+}
+
+TEST_F(SamplerTest, PlantSetChangesTheExternalLoadAndIsAnEvent) {
+  Sampler s(net_, 100.0);
+  ASSERT_TRUE(s.request(parse_telemetry_request(R"({"op":"plant_set","slave":2,"external_load":0.5})")));
+  s.poll(0);
+  std::optional<TelemetryReply> reply = s.reply();
+  ASSERT_TRUE(reply);
+  EXPECT_TRUE(reply->reply.ok()) << reply->reply.error;
+  ASSERT_TRUE(s.request(parse_telemetry_request(R"({"op":"plant_set","slave":3,"external_load":0.5})")));
+  s.poll(1'000'000);
+  reply = s.reply();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(reply->reply.status, control::ControlReply::Status::bad_request);
+  EXPECT_THAT(reply->reply.error, HasSubstr("no slave 3"));
+  drain(s);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, EventKind::plant_set);
+  EXPECT_EQ(events[0].slave, 2);
+  EXPECT_STREQ(events[0].text.data(), "external load 0.5");
+}
+
+// AL state and 603Fh events compare with what the line had when the sampler started (the
+// integration test telemetry_dds.sh sees them change on a real line).
+TEST_F(SamplerTest, NoEventsWhileNothingChanges) {
+  Sampler s(net_, 100.0);
+  s.poll(0);
+  s.poll(10'000'000);
+  drain(s);
+  EXPECT_TRUE(events.empty());
+}
+
+}  // namespace
+}  // namespace vdrive::telemetry
