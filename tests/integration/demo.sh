@@ -21,6 +21,13 @@ cat "$OUT"
 grep -qE '^Op with DC at 1000 us: [0-9]+ cycles, working counter [0-9]+ expected, 0 wrong, 0 lost' "$OUT" \
   || fail "cycles in Op with zero wrong working counters expected"
 [ "$(grep -cE '^drive 0x100[123]: ok, ' "$OUT")" -eq 3 ] || fail "three drives following the sine expected"
+# Live telemetry over DDS (on by default): each drive seen in Op in csp (mode 8), and moving
+# (two different positions of one slave).
+for s in 1 2 3; do
+  grep -qE "^telemetry: t=[0-9.]+s slave $s Op .* mode=8 " "$OUT" || fail "no telemetry line of slave $s in Op, csp"
+done
+positions=$(grep -E "^telemetry: .* slave 2 Op .* mode=8 " "$OUT" | sed -n 's/.* pos=\(-\?[0-9]*\) .*/\1/p' | sort -u | wc -l)
+[ "$positions" -ge 2 ] || fail "telemetry does not show slave 2 moving ($positions position(s))"
 grep -q "MADLN15BE" "$OUT" && grep -q "DS5C1" "$OUT" && grep -q "DS1000A-EC" "$OUT" || fail "drive names missing"
 ip link show "vdrive-m$SUFFIX" >/dev/null 2>&1 && fail "veth pair left behind"
 

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <map>
+#include <memory>
 #include <atomic>
 #include <csignal>
 #include <optional>
@@ -18,11 +20,14 @@
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/telemetry_command.hpp"
 #include "vdrive/cli/veth_pair.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/telemetry/telemetry_client.hpp"
+#include "vdrive/telemetry/topics.hpp"
 
 namespace vdrive::cli {
 
@@ -39,14 +44,24 @@ struct DemoOptions {
   std::uint64_t op_cycles = 500;      // 0: stop at Pre-Op
   long long cycle_us = 1000;          // every product supports 1 ms
   double sine_seconds = 2.0;          // CiA 402 sine in csp after Op (0: process data only)
+  bool telemetry = true;              // publish DDS telemetry and show it live (docs/telemetry.md)
+  std::optional<int> domain;
 };
 
 // The drives' side of the demo: a Network served by the event loop in its own thread, which
 // alone touches the network from start to join.
 class ServedLine {
 public:
-  ServedLine(const std::vector<std::string>& drives, const std::string& iface)
-      : network_(drives, clock_), link_(iface), thread_([this] { runtime::serve(network_, link_, clock_, stop_, counters_); }) {}
+  // With a telemetry domain, the line publishes DDS telemetry as `vdrive run --telemetry` does.
+  ServedLine(const std::vector<std::string>& drives, const std::string& iface, std::optional<int> telemetry_domain)
+      : network_(drives, clock_), link_(iface),
+        telemetry_(telemetry_domain ? std::make_unique<telemetry::LineTelemetry>(network_, link_, clock_, counters_, nullptr,
+                                                                                  telemetry::LineTelemetryOptions{100.0, *telemetry_domain}, nullptr)
+                                    : nullptr),
+        thread_([this] {
+          if (telemetry_) runtime::serve(network_, telemetry_->link(), clock_, stop_, counters_, &telemetry_->service());
+          else runtime::serve(network_, link_, clock_, stop_, counters_);
+        }) {}
   ~ServedLine() { stop(); }
   // Ends the event loop and waits for its thread; the counters are final afterwards.
   void stop() {
@@ -61,7 +76,36 @@ private:
   link::RawSocketLink link_;
   std::atomic<bool> stop_{false};
   runtime::LoopCounters counters_;
+  std::unique_ptr<telemetry::LineTelemetry> telemetry_;
   std::thread thread_;  // last: starts once everything it uses exists
+};
+
+// The live view of `vdrive telemetry`, from a DDS subscriber of its own (the same path another
+// process or machine would use): each axis about every 250 ms of sample time, as plain lines.
+class TelemetryView {
+public:
+  explicit TelemetryView(int domain)
+      : client_(domain), thread_([this] {
+          std::map<int, Nanos> shown;
+          telemetry::TelemetryHandlers h;
+          h.axis = [&shown](const telemetry::AxisSample& a) {
+            auto [it, fresh] = shown.try_emplace(a.slave, a.time);
+            if (!fresh && a.time - it->second < 250'000'000) return;
+            it->second = a.time;
+            fmt::print("telemetry: {}\n", telemetry_axis_line(a));
+            std::fflush(stdout);
+          };
+          while (!stop_.load()) client_.poll(50'000'000, h);
+        }) {}
+  ~TelemetryView() {
+    stop_.store(true);
+    thread_.join();
+  }
+
+private:
+  telemetry::TelemetryClient client_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
 };
 
 void print_slaves(const master::Master& m) {
@@ -84,8 +128,14 @@ void run_demo(const DemoOptions& opt) {
   fmt::print("veth pair: {} (master) <-> {} (drives)\n", veth.master_end(), veth.slave_end());
 
   try {
-    ServedLine line(opt.drives, veth.slave_end());
+    const std::optional<int> domain = opt.telemetry ? std::optional<int>(telemetry_domain(opt.domain)) : std::nullopt;
+    ServedLine line(opt.drives, veth.slave_end(), domain);
     fmt::print("serving {} drive(s) on {}: {}\n", opt.drives.size(), veth.slave_end(), fmt::join(opt.drives, ", "));
+    std::optional<TelemetryView> view;
+    if (domain) {
+      view.emplace(*domain);
+      fmt::print("telemetry: DDS domain {}, 100 Hz, shown below as `vdrive telemetry` shows it\n", *domain);
+    }
 
     link::RawSocketLink master_link(veth.master_end());
     master::Master m(master_link);
@@ -148,12 +198,15 @@ void run_demo(const DemoOptions& opt) {
       std::signal(SIGTERM, on_signal);
       while (!g_stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
+    view.reset();
     line.stop();
     fmt::print("frames served: {} in, {} out\n", line.counters().frames_in.load(), line.counters().frames_out.load());
   } catch (const link::LinkError& e) {
     throw CliError(e.kind() == link::LinkError::Kind::NotPermitted ? kExitNotPermitted : kExitFailure, e.what());
   } catch (const master::MasterError& e) {
     throw CliError(kExitFailure, fmt::format("master: {}", e.what()));
+  } catch (const telemetry::DdsError& e) {
+    throw CliError(kExitFailure, fmt::format("telemetry: {}", e.what()));
   }
   fmt::print("removed veth pair {}/{}\n", veth.master_end(), veth.slave_end());
 }
@@ -174,6 +227,8 @@ void add_demo_command(CLI::App& app) {
                   "Seconds of CiA 402 motion in Op: every drive enabled in csp follows a 0.5 Hz sine (0: none)")
       ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
+  cmd->add_flag("!--no-telemetry", opt->telemetry, "No DDS telemetry (default: published and shown live, docs/telemetry.md)");
+  cmd->add_option("--domain", opt->domain, "DDS domain id 0..232 for the telemetry (default $ROS_DOMAIN_ID, else 0)");
   cmd->add_flag("--keep-running", opt->keep_running, "Keep the drives and the veth pair until Ctrl-C");
   cmd->callback([opt] { run_demo(*opt); });
 }

@@ -29,14 +29,6 @@ constexpr const char* kAxisHeader =
 constexpr const char* kEventHeader = "time_ns,slave,kind,value,previous,text";
 constexpr Nanos kViewRefresh = 100'000'000;  // live view: 10 updates per second
 
-int domain_of(std::optional<int> option) {
-  try {
-    return telemetry::resolve_domain(option);
-  } catch (const telemetry::DomainError& e) {
-    throw CliError(kExitBadArguments, e.what());
-  }
-}
-
 std::unique_ptr<telemetry::TelemetryClient> open_client(int domain) {
   try {
     return std::make_unique<telemetry::TelemetryClient>(domain);
@@ -64,12 +56,24 @@ const char* state_name(std::uint16_t al) {
   return "?";
 }
 
-std::string axis_line(const telemetry::AxisSample& a) {
+}  // namespace
+
+std::string telemetry_axis_line(const telemetry::AxisSample& a) {
   return fmt::format("t={:.3f}s slave {} {}{} sw=0x{:04X} cw=0x{:04X} mode={} pos={} vel={} torque={} ferr={} err=0x{:04X}{}",
                      static_cast<double>(a.time) * 1e-9, a.slave, state_name(a.al_state), (a.al_state & 0x10) ? "+ERR" : "",
                      a.statusword, a.controlword, a.mode, a.position, a.velocity, a.torque, a.following_error, a.error_code,
                      std::isnan(a.winding_c) ? std::string() : fmt::format(" winding={:.1f}C", a.winding_c));
 }
+
+int telemetry_domain(std::optional<int> option) {
+  try {
+    return telemetry::resolve_domain(option);
+  } catch (const telemetry::DomainError& e) {
+    throw CliError(kExitBadArguments, e.what());
+  }
+}
+
+namespace {
 
 struct WatchOptions {
   std::optional<int> domain;
@@ -81,7 +85,7 @@ struct WatchOptions {
 };
 
 void watch(const WatchOptions& o) {
-  const int domain = domain_of(o.domain);
+  const int domain = telemetry_domain(o.domain);
   std::ofstream csv, events;
   if (!o.csv.empty()) {
     csv.open(o.csv);
@@ -122,7 +126,7 @@ void watch(const WatchOptions& o) {
       auto [it, fresh] = last_printed.try_emplace(a.slave, a.time);
       if (fresh || a.time - it->second >= kViewRefresh) {
         it->second = a.time;
-        fmt::print("{}\n", axis_line(a));
+        fmt::print("{}\n", telemetry_axis_line(a));
         std::fflush(stdout);
       }
     }
@@ -147,7 +151,7 @@ void watch(const WatchOptions& o) {
       next_draw = std::chrono::steady_clock::now() + std::chrono::nanoseconds(kViewRefresh);
       if (drawn > 0) fmt::print("\x1b[{}F", drawn);  // back to the block's first line
       drawn = 0;
-      for (const auto& [slave, a] : last_axis) fmt::print("\x1b[2K{}\n", axis_line(a)), ++drawn;
+      for (const auto& [slave, a] : last_axis) fmt::print("\x1b[2K{}\n", telemetry_axis_line(a)), ++drawn;
       for (const auto& [slave, b] : last_bus) {
         fmt::print("\x1b[2K  bus slave {}: frames in {} out {} dropped {}, rx errors {}, turnaround mean {} ns max {} ns, samples dropped {}\n",
                    slave, b.frames_in, b.frames_out, b.frames_dropped, b.rx_errors, b.turnaround_mean, b.turnaround_max, b.samples_dropped);
@@ -166,7 +170,7 @@ struct ControlTarget {
 };
 
 control::ControlReply request(const ControlTarget& t, const nlohmann::json& req) {
-  const int domain = domain_of(t.domain);
+  const int domain = telemetry_domain(t.domain);
   const std::unique_ptr<telemetry::TelemetryClient> client = open_client(domain);
   std::optional<control::ControlReply> reply;
   try {
@@ -304,7 +308,7 @@ std::unique_ptr<telemetry::LineTelemetry> start_run_telemetry(const RunTelemetry
                                                               const Clock& clock, const runtime::LoopCounters& counters,
                                                               control::FaultService* faults, std::function<void()> wake) {
   if (!o.enabled) return nullptr;
-  const int domain = domain_of(o.domain);
+  const int domain = telemetry_domain(o.domain);
   try {
     auto t = std::make_unique<telemetry::LineTelemetry>(network, served, clock, counters, faults,
                                                         telemetry::LineTelemetryOptions{o.rate_hz, domain}, std::move(wake));

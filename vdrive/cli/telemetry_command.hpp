@@ -5,8 +5,10 @@
 // `vdrive run` and what they start.
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "vdrive/telemetry/line_telemetry.hpp"
+#include "vdrive/telemetry/samples.hpp"
 
 namespace CLI { class App; }
 
@@ -19,6 +21,12 @@ struct RunTelemetryOptions {
   double rate_hz = 100.0;
   std::optional<int> domain;
 };
+
+// One axis sample as the live view shows it ("t=1.230s slave 1 Op sw=0x1237 ... pos=... ...").
+std::string telemetry_axis_line(const telemetry::AxisSample& a);
+
+// The DDS domain: `option`, else $ROS_DOMAIN_ID, else 0; CliError (exit 2) for a bad one.
+int telemetry_domain(std::optional<int> option);
 
 // --telemetry, --telemetry-rate HZ, --domain N on `vdrive run`.
 void add_run_telemetry_options(CLI::App* run, RunTelemetryOptions& options);
