@@ -222,6 +222,7 @@ void run(const RunOptions& o) {
   status.stop();  // its line ends before the summary
   spdlog::info("stopped: {} frames in, {} out, {} dropped, {} send failures", counters.frames_in.load(),
                counters.frames_out.load(), counters.dropped.load(), counters.send_failed.load());
+  if (telemetry) spdlog::info("telemetry: {} samples published, {} dropped (publisher behind)", telemetry->published(), telemetry->dropped());
   for (const fault::Direction d : {fault::Direction::to_slaves, fault::Direction::to_master}) {
     const fault::WireImpairment::Counters& c = wire.counters(d);
     if (c.dropped + c.corrupted + c.duplicated + c.reordered == 0) continue;
