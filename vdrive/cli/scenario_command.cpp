@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/telemetry_command.hpp"
+#include "vdrive/control/fault_service.hpp"
 #include "vdrive/cli/veth_pair.hpp"
 #include "vdrive/link/link_error.hpp"
 #include "vdrive/scenario/junit_writer.hpp"
@@ -29,6 +31,29 @@ struct ScenarioOptions {
   bool verbose = false;
   bool veth = false;          // real time: the built-in master over a veth pair made for the run
   std::string iface;          // real time: an external master on this interface
+  RunTelemetryOptions telemetry;  // real time: DDS telemetry of the line (docs/telemetry.md)
+};
+
+// --telemetry: the line's DDS telemetry, with a fault service of its own for the control topic's
+// requests (the scenario's own faults go through the runner's injector; wire faults need the
+// runner's wire and are refused here).
+class TelemetryTap final : public scenario::LineTap {
+public:
+  TelemetryTap(const RunTelemetryOptions& o, network::Network& network, link::Link& served, const Clock& clock,
+               const runtime::LoopCounters& counters)
+      : faults_(network, nullptr, nullptr),
+        telemetry_(start_run_telemetry(o, network, served, clock, counters, &faults_, [] {})) {}
+  ~TelemetryTap() override {
+    if (telemetry_) std::fprintf(stderr, "telemetry: %llu samples published, %llu dropped\n",
+                                 static_cast<unsigned long long>(telemetry_->published()),
+                                 static_cast<unsigned long long>(telemetry_->dropped()));
+  }
+  link::Link& link() override { return telemetry_->link(); }
+  runtime::LoopService& service() override { return telemetry_->service(); }
+
+private:
+  control::FaultService faults_;
+  std::unique_ptr<telemetry::LineTelemetry> telemetry_;
 };
 
 // OUT.csv -> OUT-<name>.csv when several scenarios share one option.
@@ -47,6 +72,9 @@ void run(const ScenarioOptions& o) {
   }
   const bool several = scenarios.size() > 1;
   if (o.veth && !o.iface.empty()) throw CliError(kExitBadArguments, "--veth and --iface exclude each other");
+  if (o.telemetry.enabled && !o.veth && o.iface.empty())
+    throw CliError(kExitBadArguments, "--telemetry needs a real-time run (--veth or --iface): virtual time runs faster than any subscriber");
+  if (o.telemetry.enabled) telemetry_domain(o.telemetry.domain);  // a bad domain is named before anything starts
   // One pair for the whole run; names unique per process so parallel runs do not collide.
   std::unique_ptr<VethPair> veth;
   if (o.veth) veth = std::make_unique<VethPair>(fmt::format("vds{}m", ::getpid()), fmt::format("vds{}l", ::getpid()));
@@ -63,6 +91,11 @@ void run(const ScenarioOptions& o) {
       ro.line_interface = veth->slave_end();
     } else if (!o.iface.empty()) {
       ro.line_interface = o.iface;
+    }
+    if (o.telemetry.enabled) {
+      ro.line_tap = [&o](network::Network& network, link::Link& served, const Clock& clock, const runtime::LoopCounters& counters) {
+        return std::make_unique<TelemetryTap>(o.telemetry, network, served, clock, counters);
+      };
     }
     if (o.verbose) ro.log = [&](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
     if (tty && !o.verbose) {
@@ -120,6 +153,7 @@ void add_scenario_command(CLI::App& app) {
   cmd->add_flag("--veth", o->veth, "Real time: the built-in master and the line on a veth pair made for the run (root)");
   cmd->add_option("--iface", o->iface,
                   "Real time: serve the line on this interface for an external master; only faults and checks run");
+  add_run_telemetry_options(cmd, o->telemetry);
   cmd->callback([o] { run(*o); });
 }
 

@@ -24,7 +24,7 @@ bool RealtimeWire::send(std::span<const std::uint8_t> frame) {
 Nanos RealtimeWire::serve_round(Nanos until) {
   const std::uint64_t sent = counters_.frames_out.load(std::memory_order_relaxed);
   line_.refresh();  // the runner's FaultInjector may have changed the wire between rounds
-  runtime::serve_once(network_, line_, clock_, until, counters_);
+  runtime::serve_once(network_, *served_, clock_, until, counters_, service_);
   if (!master_ || counters_.frames_out.load(std::memory_order_relaxed) == sent) return 0;
   const Nanos back = std::min({network_.next_deadline(), line_.next_release(), until});
   return std::clamp(back - clock_.now(), Nanos{0}, runtime::kMaxWait);

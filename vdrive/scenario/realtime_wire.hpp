@@ -29,6 +29,15 @@ public:
   void set_capture(PcapngWriter* capture) override { capture_ = capture; }
   void serve_until(Nanos until) override;
 
+  // The line as served (behind the wire's impairment) and its counters, for a LineTap to wrap;
+  // attach() then serves through `served` and polls `service` every round.
+  link::Link& line() { return line_; }
+  const runtime::LoopCounters& counters() const { return counters_; }
+  void attach(link::Link& served, runtime::LoopService* service) {
+    served_ = &served;
+    service_ = service;
+  }
+
 private:
   // One round of the line, `until` at the latest; returns how long to wait at the master's end
   // for a reply the round sent (0: none sent).
@@ -38,6 +47,8 @@ private:
   const Clock& clock_;
   link::Link* master_;
   fault::ImpairedLink line_;
+  link::Link* served_ = &line_;
+  runtime::LoopService* service_ = nullptr;
   runtime::LoopCounters counters_;
   PcapngWriter* capture_ = nullptr;
   std::array<std::uint8_t, link::kMaxFrame> scratch_{};

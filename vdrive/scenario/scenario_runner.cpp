@@ -75,6 +75,10 @@ public:
       wire_->set_capture(capture_.get());
     }
     if (!o.trace_path.empty()) trace_ = std::make_unique<TraceWriter>(o.trace_path);
+    if (auto* rt = dynamic_cast<RealtimeWire*>(wire_.get()); rt && o.line_tap) {
+      tap_ = o.line_tap(network_, rt->line(), *clock_, rt->counters());
+      if (tap_) rt->attach(tap_->link(), &tap_->service());
+    }
     for (const Expectation& e : s.expectations) checks_.emplace_back(e);
   }
 
@@ -495,6 +499,7 @@ private:
   fault::WireImpairment impairment_;
   std::unique_ptr<link::RawSocketLink> line_link_, master_link_;  // real time only
   std::unique_ptr<ScenarioWire> wire_;
+  std::unique_ptr<LineTap> tap_;  // after wire_: ends before the wire it taps
   fault::FaultInjector faults_;
   std::unique_ptr<master::Master> master_;                      // null: an external master
   EventLog events_;

@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 
+#include "vdrive/scenario/line_tap.hpp"
 #include "vdrive/scenario/scenario.hpp"
 #include "vdrive/scenario/scenario_result.hpp"
 
@@ -35,6 +36,7 @@ struct RunOptions {
   std::optional<std::uint64_t> seed;            // overrides the file's seed
   std::function<void(const std::string&)> log;  // each step, fault, state and simulated second
   std::function<void(Nanos)> progress;          // every simulated second
+  LineTapFactory line_tap;                      // real time only: e.g. DDS telemetry (line_tap.hpp)
 };
 
 // Never throws for what happens in the run: a failure to start is ScenarioResult::error.
