@@ -17,7 +17,8 @@
 #                      beside the build directory that holds network_simulator)
 #   VDRIVE_OPTS="..."  extra `vdrive run` options (e.g. "--busy-poll-us 200 --cpu 1")
 #   ECHO_OPTS="..."    extra echo options (e.g. "--busy-poll-us 200")
-#   MASTER_OPTS="..."  extra master options (e.g. "--rt-priority 80")
+#   MASTER_OPTS="..."  extra master options (e.g. "--busy-poll-us 1000")
+#   RT_PRIORITY=N      run the master and every responder (KickCAT too) under `chrt -f N`
 #   OUT=DIR            keep the JSON results and logs in DIR (default: a temporary directory)
 # Exit: 0 all measured, 1 a run failed, 77 not root.
 set -u
@@ -30,6 +31,8 @@ SAMPLES=${SAMPLES:-10000}
 DRIVES=${DRIVES:-"1 3 16 64"}
 RATES=${RATES:-"1000 0"}
 KICKCAT_SIM=${KICKCAT_SIM:-}
+RT=()
+[ -n "${RT_PRIORITY:-}" ] && RT=(chrt -f "$RT_PRIORITY")
 [ "$(id -u)" -eq 0 ] || { echo "SKIP: needs root (network namespace, veth, raw sockets)"; exit 77; }
 for f in "$VDRIVE" "$MASTER" "$ECHO"; do [ -x "$f" ] || { echo "missing $f (build it first)"; exit 1; }; done
 if [ -n "$KICKCAT_SIM" ]; then
@@ -74,7 +77,7 @@ ip -n "$NS" link set "$S_IF" up
 # until its log matches READY (empty: a fixed moment), then one more second for its socket.
 start_server() {
   local name=$1 ready=$2; shift 2
-  ip netns exec "$NS" "$@" >"$OUT/$name.log" 2>&1 &
+  ip netns exec "$NS" "${RT[@]}" "$@" >"$OUT/$name.log" 2>&1 &
   SERVER_PID=$!
   local _
   for _ in $(seq 1 600); do   # a line of 64 drives takes seconds to build on a loaded host
@@ -92,7 +95,7 @@ measure() {
   local rate
   for rate in $RATES; do
     # shellcheck disable=SC2086
-    "$MASTER" --iface "$M_IF" --line "$line" --label "$label/$n" --rate-hz "$rate" --samples "$SAMPLES" \
+    "${RT[@]}" "$MASTER" --iface "$M_IF" --line "$line" --label "$label/$n" --rate-hz "$rate" --samples "$SAMPLES" \
       --json "$RESULTS" ${MASTER_OPTS:-} "$@" 2>>"$OUT/master.err" || {
       cat "$OUT/master.err"; echo "FAILED: $label N=$n at rate $rate"; return 1; }
   done
