@@ -42,6 +42,13 @@ TEST(CpuAffinity, PinsTheCallingThreadOnly) {
   EXPECT_EQ(CPU_COUNT(&after), before);  // the test's own thread is untouched
 }
 
+TEST(CpuAffinity, AllowedCpusAreThoseOfTheAffinityMask) {
+  const cpu_set_t set = affinity();
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) EXPECT_EQ(cpu_is_allowed(cpu), CPU_ISSET(cpu, &set) != 0) << "CPU " << cpu;
+  EXPECT_FALSE(cpu_is_allowed(-1));
+  EXPECT_FALSE(cpu_is_allowed(CPU_SETSIZE));
+}
+
 TEST(CpuAffinity, MissingCpuIsRefused) {
   std::thread([] {
     const cpu_set_t before = affinity();

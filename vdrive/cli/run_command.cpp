@@ -164,6 +164,8 @@ std::unique_ptr<link::Link> open_link(const RunOptions& o) {
 
 void run(const RunOptions& o) {
   check_products(o);
+  if (o.cpu >= 0 && !runtime::cpu_is_allowed(o.cpu))
+    throw CliError(kExitBadArguments, fmt::format("--cpu {}: no such CPU, or not one this process may use", o.cpu));
   // Logs go to stderr at --log-level (set up by main for every command, log_level.hpp).
 
   std::unique_ptr<link::Link> link = open_link(o);
@@ -211,7 +213,8 @@ void run(const RunOptions& o) {
   // Pinned last, so the threads started above (control, telemetry) stay off the serving CPU.
   if (o.cpu >= 0) {
     if (const int err = runtime::pin_to_cpu(o.cpu); err != 0)
-      throw CliError(kExitBadArguments, fmt::format("--cpu {}: {}", o.cpu, std::strerror(err)));
+      throw CliError(kExitBadArguments, fmt::format("--cpu {}: {} (no such CPU, or not one this process may use)", o.cpu,
+                                                    std::strerror(err)));
   }
   try {
     if (telemetry) runtime::serve(*network, telemetry->link(), clock, stop, counters, status.wrap(&telemetry->service()));

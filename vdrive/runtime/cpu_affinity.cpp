@@ -14,4 +14,11 @@ int pin_to_cpu(int cpu) {
   return ::sched_setaffinity(0, sizeof set, &set) == 0 ? 0 : errno;
 }
 
+bool cpu_is_allowed(int cpu) {
+  if (cpu < 0 || cpu >= CPU_SETSIZE) return false;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  return ::sched_getaffinity(0, sizeof set, &set) == 0 && CPU_ISSET(static_cast<unsigned>(cpu), &set);
+}
+
 }  // namespace vdrive::runtime

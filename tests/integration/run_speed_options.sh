@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Integration (issue 9, part 7): `vdrive run --busy-poll-us 200 --cpu 0` serves a6b, ds5c1, ds1000a
+# as before — `vdrive-master op --dc` runs 2,000 cycles with zero wrong working counters against
+# it — and `--cpu` naming a CPU that does not exist is refused with exit 2 and a one-line error
+# naming the option. (What busy polling saves is measured by bench/turnaround/run.sh, not here.)
+# Usage: bash run_speed_options.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
+set -u
+
+VDRIVE=${1:?path to vdrive}
+BUILD=${2:?build directory}
+MASTER="$BUILD/master/vdrive-master"
+
+# shellcheck source=lib/veth_line.sh
+. "$(dirname "$0")/lib/veth_line.sh"
+require_tools
+
+start_line --no-control --busy-poll-us 200 --cpu 0 --drive a6b --drive ds5c1 --drive ds1000a
+wait_for_line
+"$MASTER" op --iface "$M_IF" --dc --cycles 2000 --reply-timeout-us 200000 >"$WORK/op.txt" 2>"$WORK/op.err"
+rc=$?
+tail -3 "$WORK/op.txt"
+[ $rc -eq 0 ] || { cat "$WORK/op.err" "$WORK/vdrive.log"; fail "vdrive-master op exited $rc"; }
+grep -Eq "^summary: 2000 cycles of 1000 us, working counter [0-9]+ expected, 0 wrong, 0 lost, 0 not all in Op" "$WORK/op.txt" \
+  || fail "summary is not 2000 cycles with zero wrong working counters"
+
+err=$(ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --cpu 1000 --drive a6b 2>&1 >/dev/null)
+rc=$?
+[ $rc -eq 2 ] || fail "--cpu 1000 exited $rc, expected 2: $err"
+[ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "--cpu 1000: error is not one line: $err"
+echo "$err" | grep -q -- "--cpu 1000" || fail "--cpu 1000: error does not name the option: $err"
+echo "ok: --cpu 1000 -> $err"
+echo "PASS"
