@@ -9,6 +9,7 @@
 #include <string>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/fault_inject_options.hpp"
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/control_socket.hpp"
 #include "vdrive/fault/fault_spec.hpp"
@@ -22,13 +23,6 @@ struct Target {
   std::string iface;
   std::string control;
   bool json = false;  // print the reply line as it came
-};
-
-struct InjectOptions {
-  std::string kind;
-  std::optional<int> slave, count;
-  std::optional<std::string> duration, direction, delay, abort_code, code;
-  std::optional<double> probability, position, load_scale, force;
 };
 
 std::string path_of(const Target& t) {
@@ -72,20 +66,8 @@ std::string duration_text(Nanos ns) {
   return fmt::format("{}us", ns / 1000);
 }
 
-void inject(const Target& t, const InjectOptions& o) {
-  nlohmann::json f{{"kind", o.kind}};
-  if (o.slave) f["slave"] = *o.slave;
-  if (o.count) f["count"] = *o.count;
-  if (o.duration) f["duration"] = *o.duration;
-  if (o.direction) f["direction"] = *o.direction;
-  if (o.delay) f["delay"] = *o.delay;
-  if (o.abort_code) f["abort_code"] = *o.abort_code;
-  if (o.code) f["code"] = *o.code;
-  if (o.probability) f["probability"] = *o.probability;
-  if (o.position) f["position"] = *o.position;
-  if (o.load_scale) f["load_scale"] = *o.load_scale;
-  if (o.force) f["force"] = *o.force;
-  const control::ControlReply r = request(t, {{"op", "inject"}, {"fault", f}});
+void inject(const Target& t, const FaultInjectOptions& o) {
+  const control::ControlReply r = request(t, {{"op", "inject"}, {"fault", fault_json(o)}});
   if (t.json) return;
   if (r.id != 0) fmt::print("fault {} injected\n", r.id);
   else fmt::print("one-shot fault injected\n");
@@ -130,21 +112,10 @@ void add_fault_command(CLI::App& app) {
   cmd->require_subcommand(1);
 
   auto t = std::make_shared<Target>();
-  auto o = std::make_shared<InjectOptions>();
+  auto o = std::make_shared<FaultInjectOptions>();
   CLI::App* inj = cmd->add_subcommand("inject", "Start a fault now (vdrive fault kinds lists them)");
   add_target(inj, *t);
-  inj->add_option("kind", o->kind, "Fault kind")->required();
-  inj->add_option("--slave", o->slave, "Slave in cable order, 1 = first (esc, mailbox, drive, plant faults; link_down)");
-  inj->add_option("--duration", o->duration, "How long, e.g. 250ms (default: until cleared)");
-  inj->add_option("--probability", o->probability, "Per frame, 0..1 (drop, corrupt, duplicate, reorder; default 1)");
-  inj->add_option("--direction", o->direction, "both, to_slaves or to_master (wire faults; default both)");
-  inj->add_option("--delay", o->delay, "delay: how long every frame is held, e.g. 2ms");
-  inj->add_option("--count", o->count, "lost_reply, duplicate_reply: how many replies (default 1)");
-  inj->add_option("--abort-code", o->abort_code, "sdo_abort: the abort code, e.g. 0x06020000");
-  inj->add_option("--code", o->code, "alarm: an alarm code of the product");
-  inj->add_option("--position", o->position, "collision: the obstacle's load position");
-  inj->add_option("--load-scale", o->load_scale, "load_change: inertia/mass factor");
-  inj->add_option("--force", o->force, "load_change: added external load (N or N m)");
+  add_fault_inject_options(inj, *o);
   inj->callback([t, o] { inject(*t, *o); });
 
   auto id = std::make_shared<int>(0);

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/fault_inject_options.hpp"
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/runtime/stop_signal.hpp"
 #include "vdrive/telemetry/sampler.hpp"
@@ -190,27 +191,8 @@ control::ControlReply request(const ControlTarget& t, const nlohmann::json& req)
   throw CliError(kExitFailure, reply->error);
 }
 
-struct InjectOptions {
-  std::string kind;
-  std::optional<int> slave, count;
-  std::optional<std::string> duration, direction, delay, abort_code, code;
-  std::optional<double> probability, position, load_scale, force;
-};
-
-void inject(const ControlTarget& t, const InjectOptions& o) {
-  nlohmann::json f{{"kind", o.kind}};
-  if (o.slave) f["slave"] = *o.slave;
-  if (o.count) f["count"] = *o.count;
-  if (o.duration) f["duration"] = *o.duration;
-  if (o.direction) f["direction"] = *o.direction;
-  if (o.delay) f["delay"] = *o.delay;
-  if (o.abort_code) f["abort_code"] = *o.abort_code;
-  if (o.code) f["code"] = *o.code;
-  if (o.probability) f["probability"] = *o.probability;
-  if (o.position) f["position"] = *o.position;
-  if (o.load_scale) f["load_scale"] = *o.load_scale;
-  if (o.force) f["force"] = *o.force;
-  const control::ControlReply r = request(t, {{"op", "inject"}, {"fault", f}});
+void inject(const ControlTarget& t, const FaultInjectOptions& o) {
+  const control::ControlReply r = request(t, {{"op", "inject"}, {"fault", fault_json(o)}});
   if (r.id != 0) fmt::print("fault {} injected\n", r.id);
   else fmt::print("one-shot fault injected\n");
 }
@@ -262,21 +244,10 @@ void add_telemetry_command(CLI::App& app) {
   });
 
   auto t = std::make_shared<ControlTarget>();
-  auto o = std::make_shared<InjectOptions>();
+  auto o = std::make_shared<FaultInjectOptions>();
   CLI::App* inj = cmd->add_subcommand("inject", "Start a fault through the control topic (kinds: vdrive fault kinds)");
   add_target(inj, *t);
-  inj->add_option("kind", o->kind, "Fault kind")->required();
-  inj->add_option("--slave", o->slave, "Slave in cable order, 1 = first");
-  inj->add_option("--duration", o->duration, "How long, e.g. 250ms (default: until cleared)");
-  inj->add_option("--probability", o->probability, "Per frame, 0..1 (drop, corrupt, duplicate, reorder; default 1)");
-  inj->add_option("--direction", o->direction, "both, to_slaves or to_master (wire faults; default both)");
-  inj->add_option("--delay", o->delay, "delay: how long every frame is held, e.g. 2ms");
-  inj->add_option("--count", o->count, "lost_reply, duplicate_reply: how many replies (default 1)");
-  inj->add_option("--abort-code", o->abort_code, "sdo_abort: the abort code, e.g. 0x06020000");
-  inj->add_option("--code", o->code, "alarm: an alarm code of the product");
-  inj->add_option("--position", o->position, "collision: the obstacle's load position");
-  inj->add_option("--load-scale", o->load_scale, "load_change: inertia/mass factor");
-  inj->add_option("--force", o->force, "load_change: added external load (N or N m)");
+  add_fault_inject_options(inj, *o);
   inj->callback([t, o] { inject(*t, *o); });
 
   auto what = std::make_shared<std::string>();
