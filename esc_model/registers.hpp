@@ -172,6 +172,7 @@ inline constexpr std::uint8_t kRepeatAck = 1u << 1;
 inline constexpr Addr kDcFirst = 0x0900;
 inline constexpr Addr kDcEnd = 0x0A00;
 inline constexpr Addr kDcReceiveTimePort0 = 0x0900;  // a frame writing here latches receive times
+inline constexpr Addr kDcSystemTime = 0x0910;        // 8 bytes: the local copy of the system time
 inline constexpr Addr kDcSync0Status = 0x098E;
 inline constexpr Addr kDcSync1Status = 0x098F;
 

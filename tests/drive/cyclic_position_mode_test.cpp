@@ -126,6 +126,32 @@ TEST(CyclicPositionMode, A6bStepBeyondMaxMotorSpeedIsErr27_4) {
   EXPECT_TRUE(csp.pending_alarm().empty());
 }
 
+// The host takes one SYNC0 most of a cycle late and the next on time: two set-points 0.125 ms
+// apart is the loop's jitter, not a faster bus, and no Err27.4 (a real A6B's interrupt is exact).
+// A bus that really runs at 0.5 ms is adopted after a few cycles and judged on 0.5 ms.
+TEST(CyclicPositionMode, A6bLateCycleInterruptIsNotAShorterCycle) {
+  AxisBench b("a6b", a6b_rules());
+  set_max_speed(b, 3000);  // 500 user units per 1 ms cycle
+  CyclicPositionMode csp(b.ctx());
+  b.enable(csp);
+  std::int32_t target = 0;
+  auto cycle = [&](Nanos until_next) {
+    target += 450;
+    b.set<std::int32_t>(0x607A, 0, target);
+    csp.on_cycle(b.now());
+    b.run(csp, until_next, kEnabled);
+  };
+  for (int c = 0; c < 10; ++c) cycle(kMs);
+  const Nanos late = kMs - 2 * b.control_period();
+  b.run(csp, late, kEnabled);
+  cycle(kMs - late);
+  for (int c = 0; c < 5; ++c) cycle(kMs);
+  EXPECT_TRUE(csp.pending_alarm().empty());
+
+  for (int c = 0; c < 10 && csp.pending_alarm().empty(); ++c) cycle(kMs / 2);
+  EXPECT_EQ(csp.pending_alarm(), "27.4");  // 450 per 0.5 ms is beyond 3000 r/min
+}
+
 // A6B: the master must keep 607Ah on 6064h while disabled; a target far from the axis at enable
 // is a jump (L16793-L16871).
 TEST(CyclicPositionMode, A6bStaleTargetAtEnableIsAJump) {

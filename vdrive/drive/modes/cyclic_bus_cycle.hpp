@@ -20,7 +20,7 @@ public:
   void reset() { pending_ = false; }
 
   void on_cycle(Nanos now) {
-    if (driven_ && now > last_cycle_) measured_ = now - last_cycle_;
+    if (driven_ && now > last_cycle_) note_interval(now - last_cycle_);
     driven_ = true;
     pending_ = true;
     last_cycle_ = now;
@@ -45,7 +45,11 @@ public:
   bool driven() const { return driven_; }
   Nanos last_cycle() const { return last_cycle_; }
 
-  // The bus cycle: measured between on_cycle() calls, else 60C2h (value * 10^index s), else 1 ms.
+  // The bus cycle: measured between on_cycle() calls once steady, else 60C2h (value * 10^index s),
+  // else 1 ms. A real drive's SYNC0 interrupt is exact; ours is taken when the host's loop gets to
+  // it, so one late cycle is followed by a short one. A single interval more than a quarter off
+  // the period in use is that jitter and ignored (it would shrink the A6B's per-cycle step limit
+  // and raise a false Err27.4); a new period is adopted once it repeats kSteadyIntervals times.
   Nanos period() const {
     if (measured_ >= kMinPeriod && measured_ <= kMaxPeriod) return measured_;
     const std::int64_t value = period_value_.get();
@@ -60,12 +64,36 @@ public:
 
 private:
   static constexpr Nanos kMinPeriod = 10'000, kMaxPeriod = 1'000'000'000;
+  static constexpr int kSteadyIntervals = 4;
+
+  static bool near(Nanos interval, Nanos period) { return 4 * (interval > period ? interval - period : period - interval) <= period; }
+
+  void note_interval(Nanos interval) {
+    if (measured_ != 0 && near(interval, measured_)) {
+      measured_ += (interval - measured_) / 8;   // follows a slow drift, smooths the jitter
+      run_ = 0;
+      return;
+    }
+    if (run_ > 0 && near(interval, candidate_)) {
+      ++run_;
+    } else {
+      candidate_ = interval;
+      run_ = 1;
+    }
+    if (run_ >= kSteadyIntervals) {
+      measured_ = candidate_;
+      run_ = 0;
+    }
+  }
+
   ObjectRef<std::uint8_t> period_value_;
   ObjectRef<std::int8_t> period_index_;
   bool driven_ = false;
   bool pending_ = false;
   Nanos last_cycle_ = 0;
-  Nanos measured_ = 0;
+  Nanos measured_ = 0;    // 0 = not steady yet
+  Nanos candidate_ = 0;   // an interval off measured_, and how often in a row it came
+  int run_ = 0;
 };
 
 }  // namespace vdrive::drive

@@ -55,11 +55,17 @@ void SyncModule::on_events(std::uint32_t events, Nanos now) {
     if (monitor_.running() && decision_.mode == SyncMode::DcSync0) {
       const std::uint32_t cycle = context_.pdi.read_u32(kDcSync0Cycle);
       const std::uint64_t edge = read_u64(context_.pdi, kDcNextSync0) - cycle;
-      handle(monitor_.on_edge(edge, now, cycle), now);
+      // The cycle runs at the pulse, as on a microcontroller whose interrupt is exact: when the
+      // host's loop gets to the pulse late, the outputs are dated at the pulse and the drive's
+      // set-point segment starts there, not at the moment the loop looked.
+      const std::uint64_t system_now = read_u64(context_.pdi, reg::kDcSystemTime);
+      Nanos cycle_at = now;
+      if (system_now >= edge && system_now - edge < cycle) cycle_at = now - static_cast<Nanos>(system_now - edge);
+      handle(monitor_.on_edge(edge, now, cycle), now, cycle_at);
     }
   }
   if ((events & kSm2Event) && monitor_.running() && decision_.mode == SyncMode::Sm2Event)
-    handle(monitor_.on_edge(static_cast<std::uint64_t>(now), now), now);
+    handle(monitor_.on_edge(static_cast<std::uint64_t>(now), now), now, now);
 }
 
 CheckResult SyncModule::check_transition(AlState from, AlState to) {
@@ -118,7 +124,7 @@ void SyncModule::entered(AlState from, AlState to, Nanos now) {
   }
 }
 
-void SyncModule::tick(Nanos now) { handle(monitor_.on_timer(now), now); }
+void SyncModule::tick(Nanos now) { handle(monitor_.on_timer(now), now, now); }
 
 Nanos SyncModule::next_deadline() const { return monitor_.next_deadline(); }
 
@@ -127,7 +133,7 @@ void SyncModule::run_cycle(Nanos now) {
   for (auto& task : tasks_) task(now);
 }
 
-void SyncModule::handle(const MonitorReport& r, Nanos now) {
+void SyncModule::handle(const MonitorReport& r, Nanos now, Nanos cycle_at) {
   if (r.missed > 0) {
     if (rules_.spec.sm_event_missed_subindex != 0) {
       objects_.count(kOutputSync, rules_.spec.sm_event_missed_subindex, static_cast<std::uint64_t>(r.missed));
@@ -155,7 +161,7 @@ void SyncModule::handle(const MonitorReport& r, Nanos now) {
       }
     }
   }
-  if (r.run_cycle) run_cycle(now);
+  if (r.run_cycle) run_cycle(cycle_at);
 
   const profile::AlStatusCodes& codes = context_.profile.al_codes;
   switch (r.fault) {

@@ -52,7 +52,8 @@ public:
   const SyncRules& rules() const { return rules_; }
 
 private:
-  void handle(const MonitorReport& report, Nanos now);
+  // `cycle_at`: when the cycle's sync point was (the SYNC0 pulse), which the loop may see late.
+  void handle(const MonitorReport& report, Nanos now, Nanos cycle_at);
   void run_cycle(Nanos now);
   void publish_running_values(const SyncSettings& settings);
   MonitorConfig monitor_config() const;
