@@ -56,7 +56,7 @@ ip -n "$NS" link set "$S_IF" up
 ip netns exec "$NS" "$VDRIVE" scenario run "$SRC/scenarios/line_op_watch.yaml" --iface "$S_IF" -v \
   >"$WORK/ext.txt" 2>"$WORK/ext.err" &
 VDRIVE_PID=$!
-sleep 0.3
+wait_for_line   # the scenario serves once its line is built; a scan before that finds nobody
 # The default reply wait (one cycle): a master that waited 200 ms for each lost reply would starve
 # the drives past their 100 ms SM watchdog during the injected loss.
 "$MASTER" op --iface "$M_IF" --dc --cycle-us 1000 --cycles 4000 --drift-frames 2000 \

@@ -3,11 +3,13 @@
 # with --telemetry at 100 Hz in its own namespace (lo up: Fast DDS discovers over loopback UDP and
 # carries data over shared memory) on a veth end; vdrive-master runs a csp sine from the other
 # end. A second process, `vdrive telemetry --csv --events-csv`, subscribes in the same namespace
-# for 6 s. While the axes move, `vdrive telemetry inject encoder_error --slave 1` goes through the
+# until the requests are done and the master has finished, then gets Ctrl-C (each request client
+# is a new DDS participant whose discovery can take a second or more: a fixed window missed
+# events on a busy machine). While the axes move, `vdrive telemetry inject encoder_error --slave 1` goes through the
 # control topic; then `plant-set` changes slave 2's external load, and refusals are checked.
 # Asserts: per-axis samples at the configured rate (time stamps 10 ms apart; per axis count within
 # the subscription window +-2 samples of 100 Hz; a rate check, not a performance one), the axes
-# move (position changes), the fault takes effect (603Fh of slave 1 becomes non-zero in the
+# move (position changes), the fault takes effect (603Fh of slave 1 becomes non-zero in Op in the
 # samples, alarm_raised and fault_injected events arrive), plant_set is acknowledged and its event
 # arrives, a bad request exits 2 naming the problem, no vdrive in a domain exits 1.
 #
@@ -39,13 +41,13 @@ in_ns "$VDRIVE" run --iface "$S_IF" --no-control --no-status --telemetry --telem
 VDRIVE_PID=$!
 wait_for_line
 
-in_ns "$VDRIVE" telemetry --domain "$DOMAIN" --duration 6 --csv "$WORK/axes.csv" --events-csv "$WORK/events.csv" -q \
+ip netns exec "$NS" "$VDRIVE" telemetry --domain "$DOMAIN" --duration 60 --csv "$WORK/axes.csv" --events-csv "$WORK/events.csv" -q \
   >"$WORK/tlm.out" 2>&1 &
 TLM_PID=$!
-"$MASTER" op --iface "$M_IF" --dc --cycle-us 1000 --reply-timeout-us 200000 --sine --frequency 0.5 --seconds 5 \
+"$MASTER" op --iface "$M_IF" --dc --cycle-us 1000 --reply-timeout-us 200000 --sine --frequency 0.5 --seconds 8 \
   >"$WORK/op.txt" 2>"$WORK/op.err" &
 MASTER_PID=$!
-sleep 3.5
+sleep 2.5   # the line is in Op and moving
 out=$(tlm inject encoder_error --slave 1 2>&1) || fail "telemetry inject failed: $out"
 echo "$out"
 [ "$out" = "fault 1 injected" ] || fail "telemetry inject printed '$out'"
@@ -55,9 +57,11 @@ out=$(tlm plant-set --slave 7 --external-load 1 2>&1); rc=$?
 [ $rc -eq 2 ] && echo "$out" | grep -q "no slave 7" || fail "plant-set on a missing slave: exit $rc, '$out'"
 out=$(tlm inject no_such_kind 2>&1); rc=$?
 [ $rc -eq 2 ] && echo "$out" | grep -q 'unknown fault kind "no_such_kind"' || fail "unknown fault kind: exit $rc, '$out'"
-wait "$TLM_PID" || { cat "$WORK/tlm.out"; fail "vdrive telemetry exited $?"; }
 wait "$MASTER_PID"
 cat "$WORK/op.txt"
+sleep 0.5   # the last events (the line leaving Op) reach the subscriber
+kill -INT "$TLM_PID"
+wait "$TLM_PID" || { cat "$WORK/tlm.out"; fail "vdrive telemetry exited $?"; }
 
 head -1 "$WORK/axes.csv" | grep -q "^time_ns,slave,al_state,al_status_code,statusword,controlword,mode,position,velocity,torque,following_error,error_code," \
   || fail "CSV header: $(head -1 "$WORK/axes.csv")"
@@ -68,7 +72,7 @@ for s in 1 2; do
     END { print n, first, prev, bad + 0 }' "$WORK/axes.csv")
   expected=$(( (last - first) / (1000000000 / RATE) + 1 ))
   echo "slave $s: $n samples over $(( (last - first) / 1000000 )) ms, expected $expected at $RATE Hz, $gaps intervals off by more than half a period"
-  [ "$n" -ge $(( 4 * RATE )) ] || fail "slave $s: only $n samples in 6 s at $RATE Hz"
+  [ "$n" -ge $(( 4 * RATE )) ] || fail "slave $s: only $n samples at $RATE Hz"
   [ $(( n - expected )) -le 2 ] && [ $(( expected - n )) -le 2 ] || fail "slave $s: $n samples, $expected expected at $RATE Hz"
   # Samples are due every period and stamped when the loop takes them (a few us late): an
   # interval off by half a period means one was skipped or doubled.
@@ -76,8 +80,8 @@ for s in 1 2; do
 done
 moves=$(awk -F, 'NR > 1 && $2 == 2 && $7 == 8 { v[$8] = 1 } END { print length(v) }' "$WORK/axes.csv")
 [ "$moves" -gt 50 ] || fail "slave 2 did not move in csp ($moves positions)"
-alarm=$(awk -F, 'NR > 1 && $2 == 1 && $12 != 0 { print $12; exit }' "$WORK/axes.csv")
-[ -n "$alarm" ] || fail "603Fh of slave 1 never changed after the encoder fault"
+alarm=$(awk -F, 'NR > 1 && $2 == 1 && $3 == 8 && $12 != 0 { print $12; exit }' "$WORK/axes.csv")
+[ -n "$alarm" ] || fail "603Fh of slave 1 never changed in Op after the encoder fault"
 printf 'slave 1 603Fh after the fault: 0x%04X\n' "$alarm"
 grep -q ",1,fault_injected,1,0,\"fault 1 encoder_error started\"" "$WORK/events.csv" || { cat "$WORK/events.csv"; fail "no fault_injected event"; }
 grep -q ",1,alarm_raised,$alarm,0," "$WORK/events.csv" || { cat "$WORK/events.csv"; fail "no alarm_raised event with 603Fh $alarm"; }
