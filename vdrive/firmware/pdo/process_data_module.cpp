@@ -40,6 +40,7 @@ ProcessDataModule::ProcessDataModule(FirmwareContext& context)
 void ProcessDataModule::power_on(Nanos /*now*/) {
   running_ = false;
   outputs_valid_ = false;
+  new_outputs_ = false;
   cycle_by_sync_ = false;
   rx_plan_.clear();
   tx_plan_.clear();
@@ -56,6 +57,7 @@ void ProcessDataModule::on_events(std::uint32_t events, Nanos now) {
   if (events & kSm2Event) {
     if (cycle_by_sync_) {
       read_outputs();  // release the buffer; the objects are updated at SYNC0
+      new_outputs_ = true;
     } else {
       exchange_outputs(now);
       produce_inputs(now);
@@ -86,11 +88,22 @@ void ProcessDataModule::write_inputs() {
 
 void ProcessDataModule::exchange_outputs(Nanos now) {
   if (!running_) return;
+  // At SYNC0, did the master write outputs since the last pulse? Known from the SM2 event, or
+  // (its AL event not enabled in the SM2 control byte) from the buffer's write flag, which the
+  // read below clears. A pulse with none is a lost set-point: the application is not told of new
+  // outputs, so the cyclic modes bridge it (A6B command compensation, L16880-L16917) instead of
+  // taking the old target again as if the axis were to stand still for a cycle.
+  bool fresh = true;
+  if (cycle_by_sync_) {
+    const std::uint8_t status = ctx_.pdi.read_u8(static_cast<std::uint16_t>(reg::kSm0 + kOutputsSm * reg::kSmStride + reg::sm::kStatus));
+    fresh = new_outputs_ || (status & reg::sm::kIrqWrite) != 0;
+    new_outputs_ = false;
+  }
   read_outputs();
   if (ctx_.esm.state() != AlState::Op || rx_plan_.bytes() == 0) return;
   rx_plan_.scatter(std::span<const std::uint8_t>(rx_image_.data(), rx_plan_.bytes()));
   outputs_valid_ = true;
-  if (after_outputs_) after_outputs_(now);
+  if (after_outputs_ && fresh) after_outputs_(now);
 }
 
 void ProcessDataModule::produce_inputs(Nanos now) {

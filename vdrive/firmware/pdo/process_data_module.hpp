@@ -11,7 +11,8 @@
 //  - DC mode: the sync module calls set_cycle_by_sync(true) when it takes over (at PS) and then
 //    exchange_outputs() on SYNC0 and produce_inputs() at SYNC0 + input shift. The SM2/SM3
 //    events then only release the buffers (outputs reach the objects at SYNC0; the inputs
-//    latched at the last produce_inputs() are handed out again).
+//    latched at the last produce_inputs() are handed out again). A SYNC0 with no outputs written
+//    since the last one does not call `after_outputs` (a lost set-point, not a repeated one).
 // Outputs reach the objects only in Op; inputs are produced in SafeOp and Op.
 //
 // Cyclic path (events, exchange_outputs, produce_inputs): a precompiled CopyPlan over fixed
@@ -86,6 +87,7 @@ private:
   bool running_ = false;
   bool outputs_valid_ = false;
   bool cycle_by_sync_ = false;
+  bool new_outputs_ = false;   // DC mode: the master wrote SM2 since the last SYNC0
   std::function<void(Nanos)> after_outputs_, before_inputs_;
 };
 
