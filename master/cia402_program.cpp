@@ -58,7 +58,7 @@ void SineProgram::preop(Master& master) {
         // One motor revolution in user units: (6092h feed per shaft turn) / (6091h motor turns per shaft turn).
         const double motor = sdo.upload_value<std::uint32_t>(0x6091, 1), shaft = sdo.upload_value<std::uint32_t>(0x6091, 2);
         const double feed = sdo.upload_value<std::uint32_t>(0x6092, 1), feed_rev = sdo.upload_value<std::uint32_t>(0x6092, 2);
-        r.amplitude = (feed / std::max(1.0, feed_rev)) / (std::max(1.0, motor) / std::max(1.0, shaft));
+        r.amplitude = options_.revolutions * (feed / std::max(1.0, feed_rev)) / (std::max(1.0, motor) / std::max(1.0, shaft));
       }
       channels_[i].mapped = true;
     } catch (const std::exception& e) {

@@ -20,7 +20,8 @@ class Master;
 
 struct SineProgramOptions {
   Nanos cycle = 1'000'000;
-  double amplitude = 0.0;        // user units; 0 = one motor revolution (608Fh / gear / feed)
+  double amplitude = 0.0;        // user units; 0 = `revolutions` motor revolutions (608Fh / gear / feed)
+  double revolutions = 1.0;      // used when amplitude is 0: each drive's own revolution
   double frequency_hz = 1.0;
   Nanos settle = 200'000'000;    // after Operation enabled, before the motion (A6B L9442: >= 100 ms)
   Nanos motion = 2'000'000'000;  // how long the sine runs

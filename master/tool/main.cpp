@@ -8,7 +8,7 @@
 //   vdrive-master foe-read  --iface IF --slave N --name NAME OUTPUT
 //   vdrive-master op        --iface IF [--cycle-us 1000] [--dc] [--cycles N] [--drift-frames N]
 //                           [--rt-priority N] [--reply-timeout-us N]
-//                           [--sine [--amplitude U] [--frequency HZ] [--seconds S]]
+//                           [--sine [--amplitude U | --revolutions R] [--frequency HZ] [--seconds S]]
 //
 // `op --sine` runs a CiA 402 program in Op (master/cia402_program.hpp): every drive is mapped for
 // csp, enabled, and follows 607Ah = start + U (1 - cos(2 pi f t)); each drive's largest following error
@@ -282,8 +282,12 @@ int main(int argc, char** argv) {
   vdrive::master::SineProgramOptions sine_options;
   double sine_seconds = 2.0;
   op->add_flag("--sine", sine, "Enable every CiA 402 drive in csp and command a sine (see docs/master.md)");
-  op->add_option("--amplitude", sine_options.amplitude, "Sine amplitude in user units (default: one motor revolution)")
-      ->check(CLI::Range(0.0, 2e9));
+  CLI::Option* amplitude =
+      op->add_option("--amplitude", sine_options.amplitude, "Sine amplitude in user units (default: one motor revolution)")
+          ->check(CLI::Range(0.0, 2e9));
+  op->add_option("--revolutions", sine_options.revolutions, "Sine amplitude in motor revolutions of each drive (default 1)")
+      ->check(CLI::Range(0.001, 1000.0))
+      ->excludes(amplitude);
   op->add_option("--frequency", sine_options.frequency_hz, "Sine frequency in Hz (default 1)")->check(CLI::Range(0.001, 100.0));
   op->add_option("--seconds", sine_seconds, "How long the sine runs (default 2)")->check(CLI::Range(0.01, 3600.0));
   vdrive::master::tool::FoeCommand foe(app);  // foe-write, foe-read

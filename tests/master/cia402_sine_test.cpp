@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <vector>
 
 #include "master/cia402_program.hpp"
 #include "master/master.hpp"
@@ -51,6 +52,42 @@ TEST(Cia402Sine, EachDriveFollowsASineInCspAt1msDc) {
     EXPECT_GT(r.amplitude, 0.0) << r.station;
     EXPECT_LE(r.max_following_error, r.following_window) << r.station;
     EXPECT_GT(r.max_following_error, 0) << r.station << ": a moving axis lags a little";
+  }
+}
+
+// --revolutions: the amplitude is that many of each drive's own motor revolutions (6091h/6092h),
+// so the same fraction on drives with very different user units.
+TEST(Cia402Sine, RevolutionsScaleEachDrivesOwnRevolution) {
+  std::vector<double> amplitudes[2];
+  const double revolutions[2] = {1.0, 0.25};
+  for (int run = 0; run < 2; ++run) {
+    test::VirtualLine line({"a6b", "ds5c1", "ds1000a"});
+    Master master{line, line.clock()};
+    ASSERT_EQ(master.scan(), 3u);
+    SineProgramOptions sine;
+    sine.revolutions = revolutions[run];
+    sine.motion = 100'000'000;
+    SineProgram program(sine);
+    OpRunOptions options;
+    options.dc = true;
+    options.drift_frames = 200;
+    options.mailbox_timeout = 20'000'000;
+    options.preop = [&](Master& m) { program.preop(m); };
+    options.outputs = [&](std::span<std::uint8_t> image) { program.outputs(image); };
+    options.inputs = [&](std::span<std::uint8_t> image) { program.inputs(image); };
+    options.done = [&] { return program.done(); };
+    options.cycles = 2000;
+    ASSERT_TRUE(run_to_op(master, options).reached_op);
+    for (const DriveResult& r : program.results()) {
+      EXPECT_TRUE(r.ok()) << r.station << " at " << revolutions[run] << " rev";
+      amplitudes[run].push_back(r.amplitude);
+    }
+  }
+  ASSERT_EQ(amplitudes[0].size(), 3u);
+  ASSERT_EQ(amplitudes[1].size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_GT(amplitudes[0][i], 0.0);
+    EXPECT_DOUBLE_EQ(amplitudes[1][i], amplitudes[0][i] / 4) << "drive " << i;
   }
 }
 

@@ -159,14 +159,17 @@ void run_demo(const DemoOptions& opt) {
       op.dc = true;
       op.drift_frames = 2000;
       op.reply_timeout = 100'000'000;  // the demo shares the host: late replies still count, lost ones fail
-      // The drives move: each is enabled in csp and follows a 0.5 Hz sine of one motor revolution
-      // (slow enough that a frame delayed by a busy host stays inside the A6B's 0.012 rev window).
+      // The drives move: each is enabled in csp and follows a 0.5 Hz sine of a quarter of a motor
+      // revolution. A full revolution (188 r/min peak) was too fast for virtual machines: a stall
+      // of the whole host for 3 ms took the A6B out of its 0.012 rev window in about 1 run in 5
+      // (docs/performance.md); at a quarter the same stall uses a fifth of the window.
       std::optional<master::SineProgram> program;
       if (opt.sine_seconds > 0) {
         master::SineProgramOptions sine;
         sine.cycle = op.cycle;
         sine.motion = static_cast<Nanos>(opt.sine_seconds * 1e9);
         sine.frequency_hz = 0.5;
+        sine.revolutions = 0.25;
         program.emplace(sine);
         op.preop = [&](master::Master& mm) { program->preop(mm); };
         op.outputs = [&](std::span<std::uint8_t> image) { program->outputs(image); };
