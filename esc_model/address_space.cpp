@@ -53,6 +53,20 @@ bool Esc::Impl::write_byte(std::uint16_t address, std::uint8_t value, std::uint8
   return write_region(Side::Ecat, address, std::span<const std::uint8_t>(&value, 1), mask);
 }
 
+bool Esc::Impl::read_bytes(std::uint16_t address, std::span<std::uint8_t> out) {
+  if (address < reg::kRegisterEnd || address + out.size() > ram_end) {
+    return PhysicalPort::read_bytes(address, out);
+  }
+  return read_region(Side::Ecat, address, out);
+}
+
+bool Esc::Impl::write_bytes(std::uint16_t address, std::span<const std::uint8_t> in) {
+  if (address < reg::kRegisterEnd || address + in.size() > ram_end) {
+    return PhysicalPort::write_bytes(address, in);
+  }
+  return write_region(Side::Ecat, address, in, 0xFF);
+}
+
 int Esc::Impl::sm_covering(std::uint16_t address) const {
   for (int n = 0; n < sm_count; ++n) {
     if (sms[static_cast<std::size_t>(n)].covers(address)) return n;
@@ -81,6 +95,7 @@ bool Esc::Impl::read_region(Side side, std::uint16_t a, std::span<std::uint8_t> 
     return true;
   }
   bool any = false;
+  std::uint32_t touched = 0;  // SMs whose status and events are refreshed once, after the access
   for (std::size_t i = 0; i < out.size(); ++i) {
     const auto at = static_cast<std::uint16_t>(a + i);
     const int n = sm_covering(at);
@@ -94,8 +109,9 @@ bool Esc::Impl::read_region(Side side, std::uint16_t a, std::span<std::uint8_t> 
       out[i] = v;
       any = true;
     }
-    sm_refresh(n);
+    touched |= 1u << n;
   }
+  refresh_sms(touched);
   return any;
 }
 
@@ -135,6 +151,7 @@ bool Esc::Impl::write_region(Side side, std::uint16_t a, std::span<const std::ui
   }
   if (a >= ram_end) return true;
   bool any = false;
+  std::uint32_t touched = 0;
   for (std::size_t i = 0; i < in.size(); ++i) {
     const auto at = static_cast<std::uint16_t>(a + i);
     const int n = sm_covering(at);
@@ -147,9 +164,18 @@ bool Esc::Impl::write_region(Side side, std::uint16_t a, std::span<const std::ui
     const SyncManager::Result r = sm.write(side, at, in[i], mask, ram());
     any = any || r.ok;
     if (r.completed && side == Side::Ecat && sm.watchdog_trigger()) trigger_pd_watchdog();
-    sm_refresh(n);
+    touched |= 1u << n;
   }
+  refresh_sms(touched);
   return any;
+}
+
+// Status and events depend only on an SM's state after the access, and nothing observes them in
+// between, so one refresh per SM and access gives what a refresh per byte gave.
+void Esc::Impl::refresh_sms(std::uint32_t touched) {
+  for (int n = 0; touched != 0; ++n, touched >>= 1) {
+    if (touched & 1u) sm_refresh(n);
+  }
 }
 
 void Esc::Impl::write_register_byte(Side side, std::uint16_t a, std::uint8_t value,

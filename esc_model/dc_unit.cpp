@@ -181,39 +181,54 @@ void DcUnit::load_pulse_length(std::uint16_t ten_ns_units) { put_le(&regs_[kPuls
 
 // ---- registers -----------------------------------------------------------------------------
 
-void DcUnit::refresh_dynamic(Nanos now) {
-  put_le(&regs_[kSystemTime], system_time(now), 8);
+// Only the registers a read covers are computed: the firmware reads the system time on every
+// control step, and the rest (filters, pulse status) would cost as much again each time.
+void DcUnit::refresh_dynamic(Nanos now, std::uint16_t offset, std::size_t len) {
+  const auto covered = [&](std::uint16_t first, std::uint16_t size) {
+    return overlaps(offset, len, first, size);
+  };
+  if (covered(kSystemTime, 8)) put_le(&regs_[kSystemTime], system_time(now), 8);
 
-  const auto mean = static_cast<std::int64_t>(std::llround(diff_mean_));
-  const std::uint64_t magnitude = std::min<std::uint64_t>(static_cast<std::uint64_t>(mean < 0 ? -mean : mean), 0x7FFFFFFF);
-  put_le(&regs_[kSystemTimeDifference], magnitude | (mean < 0 ? 0x80000000u : 0u), 4);
-
-  const auto start = static_cast<std::int64_t>(get_le(&regs_[kSpeedCounterStart], 2) & 0x7FFF);
-  const std::int64_t range = std::max<std::int64_t>(0, start - kSpeedCounterMinDelta);
-  const std::int64_t speed = std::clamp<std::int64_t>(std::llround(freq_ * 1e6 / kPpmPerSpeedLsb), -range, range);
-  put_le(&regs_[kSpeedCounterDiff], static_cast<std::uint64_t>(speed), 2);
-
-  std::uint8_t status = regs_[kActivationStatus] & kStartTimeImplausible;
-  if (first_pulse_pending_) status |= kSync0Pending;
-  if (cyclic_active_ && !sync1_seen_ && next_sync1_ != kNever) status |= kSync1Pending;
-  regs_[kActivationStatus] = status;
-
-  const std::uint64_t pulse = get_le(&regs_[kPulseLength], 2) * 10;
-  const std::uint64_t sys = system_time(now);
-  if (pulse == 0) {
-    regs_[kSync0Status] = sync0_latched_ ? 1 : 0;
-    regs_[kSync1Status] = sync1_latched_ ? 1 : 0;
-  } else {
-    regs_[kSync0Status] = (!pulses_suppressed_ && sync0_seen_ && sys >= last_sync0_ && sys - last_sync0_ < pulse) ? 1 : 0;
-    regs_[kSync1Status] = (!pulses_suppressed_ && sync1_seen_ && sys >= last_sync1_ && sys - last_sync1_ < pulse) ? 1 : 0;
+  if (covered(kSystemTimeDifference, 4)) {
+    const auto mean = static_cast<std::int64_t>(std::llround(diff_mean_));
+    const std::uint64_t magnitude = std::min<std::uint64_t>(static_cast<std::uint64_t>(mean < 0 ? -mean : mean), 0x7FFFFFFF);
+    put_le(&regs_[kSystemTimeDifference], magnitude | (mean < 0 ? 0x80000000u : 0u), 4);
   }
 
-  put_le(&regs_[kStartTime], cyclic_active_ && next_sync0_ != kNever ? next_sync0_ : start_time_, 8);
-  put_le(&regs_[kNextSync1], cyclic_active_ && next_sync1_ != kNever ? next_sync1_ : 0, 8);
+  if (covered(kSpeedCounterDiff, 2)) {
+    const auto start = static_cast<std::int64_t>(get_le(&regs_[kSpeedCounterStart], 2) & 0x7FFF);
+    const std::int64_t range = std::max<std::int64_t>(0, start - kSpeedCounterMinDelta);
+    const std::int64_t speed = std::clamp<std::int64_t>(std::llround(freq_ * 1e6 / kPpmPerSpeedLsb), -range, range);
+    put_le(&regs_[kSpeedCounterDiff], static_cast<std::uint64_t>(speed), 2);
+  }
+
+  if (covered(kActivationStatus, 1)) {
+    std::uint8_t status = regs_[kActivationStatus] & kStartTimeImplausible;
+    if (first_pulse_pending_) status |= kSync0Pending;
+    if (cyclic_active_ && !sync1_seen_ && next_sync1_ != kNever) status |= kSync1Pending;
+    regs_[kActivationStatus] = status;
+  }
+
+  if (covered(kSync0Status, 1) || covered(kSync1Status, 1)) {
+    const std::uint64_t pulse = get_le(&regs_[kPulseLength], 2) * 10;
+    if (pulse == 0) {
+      regs_[kSync0Status] = sync0_latched_ ? 1 : 0;
+      regs_[kSync1Status] = sync1_latched_ ? 1 : 0;
+    } else {
+      const std::uint64_t sys = system_time(now);
+      regs_[kSync0Status] = (!pulses_suppressed_ && sync0_seen_ && sys >= last_sync0_ && sys - last_sync0_ < pulse) ? 1 : 0;
+      regs_[kSync1Status] = (!pulses_suppressed_ && sync1_seen_ && sys >= last_sync1_ && sys - last_sync1_ < pulse) ? 1 : 0;
+    }
+  }
+
+  if (covered(kStartTime, 8)) {
+    put_le(&regs_[kStartTime], cyclic_active_ && next_sync0_ != kNever ? next_sync0_ : start_time_, 8);
+  }
+  if (covered(kNextSync1, 8)) put_le(&regs_[kNextSync1], cyclic_active_ && next_sync1_ != kNever ? next_sync1_ : 0, 8);
 }
 
 void DcUnit::read(std::uint16_t offset, std::span<std::uint8_t> out, Nanos now) {
-  refresh_dynamic(now);
+  refresh_dynamic(now, offset, out.size());
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = offset + i < sizeof(regs_) ? regs_[offset + i] : 0;
   // Acknowledge mode: reading the SYNC status clears it.
   if (get_le(&regs_[kPulseLength], 2) == 0) {

@@ -91,7 +91,7 @@ private:
   void schedule_after(std::uint64_t sys_now);
   Nanos global_time_of(std::uint64_t system) const;
   // Register helpers
-  void refresh_dynamic(Nanos now);
+  void refresh_dynamic(Nanos now, std::uint16_t offset, std::size_t len);  // registers a read covers
   bool writable(std::uint16_t reg, bool from_ecat) const;
 
   const Clock& clock_;

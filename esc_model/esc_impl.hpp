@@ -75,6 +75,10 @@ struct Esc::Impl final : PhysicalPort {
   bool write_range(Side side, std::uint16_t address, std::span<const std::uint8_t> in);
   bool read_byte(std::uint16_t address, std::uint8_t& out) override;    // ECAT, for FMMUs
   bool write_byte(std::uint16_t address, std::uint8_t value, std::uint8_t mask) override;
+  // Runs wholly in process RAM go through one access (SyncManagers still act byte by byte);
+  // anything touching registers keeps the byte-by-byte path.
+  bool read_bytes(std::uint16_t address, std::span<std::uint8_t> out) override;
+  bool write_bytes(std::uint16_t address, std::span<const std::uint8_t> in) override;
   std::uint32_t region_end(std::uint16_t address) const;
   bool read_region(Side side, std::uint16_t address, std::span<std::uint8_t> out);
   bool write_region(Side side, std::uint16_t address, std::span<const std::uint8_t> in,
@@ -90,6 +94,7 @@ struct Esc::Impl final : PhysicalPort {
   void after_dc_read(std::uint32_t lo, std::uint32_t hi);
   void sm_reconfigure(int n);
   void sm_refresh(int n);
+  void refresh_sms(std::uint32_t touched);  // sm_refresh for each bit set
   void configure_watchdogs();
   void trigger_pd_watchdog();
   void pd_watchdog_expired();

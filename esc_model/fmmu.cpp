@@ -11,6 +11,26 @@ constexpr std::uint8_t kBitIndexMask = 0x07;
 constexpr std::uint64_t kAddressSpaceBits = 0x10000ull * 8;  // physical addresses wrap at 64 KiB
 }  // namespace
 
+bool PhysicalPort::read_bytes(std::uint16_t address, std::span<std::uint8_t> out) {
+  bool any = false;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    std::uint8_t v = 0;
+    if (read_byte(static_cast<std::uint16_t>(address + i), v)) {
+      out[i] = v;
+      any = true;
+    }
+  }
+  return any;
+}
+
+bool PhysicalPort::write_bytes(std::uint16_t address, std::span<const std::uint8_t> in) {
+  bool any = false;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    any = write_byte(static_cast<std::uint16_t>(address + i), in[i], 0xFF) || any;
+  }
+  return any;
+}
+
 Fmmu Fmmu::decode(std::span<const std::uint8_t, 16> r) {
   namespace f = reg::fmmu;
   Fmmu m;
@@ -59,14 +79,8 @@ Fmmu::Transfer Fmmu::read(std::uint32_t logical, std::span<std::uint8_t> frame,
   t.matched = true;
   const std::uint64_t dg_first = static_cast<std::uint64_t>(logical) * 8;
   if (byte_aligned()) {
-    for (std::uint64_t bit = first; bit <= last; bit += 8) {
-      const auto phys = static_cast<std::uint16_t>(physical_bit(bit) / 8);
-      std::uint8_t v = 0;
-      if (port.read_byte(phys, v)) {
-        frame[(bit - dg_first) / 8] = v;
-        t.done = true;
-      }
-    }
+    const auto phys = static_cast<std::uint16_t>(physical_bit(first) / 8);
+    t.done = port.read_bytes(phys, frame.subspan((first - dg_first) / 8, (last - first) / 8 + 1));
     return t;
   }
   std::int32_t current = -1;  // physical byte currently loaded
@@ -101,10 +115,8 @@ Fmmu::Transfer Fmmu::write(std::uint32_t logical, std::span<const std::uint8_t> 
   t.matched = true;
   const std::uint64_t dg_first = static_cast<std::uint64_t>(logical) * 8;
   if (byte_aligned()) {
-    for (std::uint64_t bit = first; bit <= last; bit += 8) {
-      const auto phys = static_cast<std::uint16_t>(physical_bit(bit) / 8);
-      t.done = port.write_byte(phys, source[(bit - dg_first) / 8], 0xFF) || t.done;
-    }
+    const auto phys = static_cast<std::uint16_t>(physical_bit(first) / 8);
+    t.done = port.write_bytes(phys, source.subspan((first - dg_first) / 8, (last - first) / 8 + 1));
     return t;
   }
   // Collect the bits that land in one physical byte and write them with one masked access.

@@ -20,6 +20,10 @@ class PhysicalPort {
 public:
   virtual bool read_byte(std::uint16_t address, std::uint8_t& out) = 0;
   virtual bool write_byte(std::uint16_t address, std::uint8_t value, std::uint8_t mask) = 0;
+  // A run of whole bytes from `address` on (wrapping at 64 KiB), as read_byte/write_byte byte by
+  // byte would do it (which is what these defaults do); true if any byte was accepted.
+  virtual bool read_bytes(std::uint16_t address, std::span<std::uint8_t> out);
+  virtual bool write_bytes(std::uint16_t address, std::span<const std::uint8_t> in);
 
 protected:
   ~PhysicalPort() = default;

@@ -23,9 +23,11 @@ void Esc::Impl::after_register_read(Side side, std::uint32_t lo, std::uint32_t h
     if (touches(lo, hi, reg::kWatchdogStatusProcessData, 2)) {
       set_al_event(reg::al_event::kPdWatchdog, false);
     }
-    for (int n = 0; n < sm_count; ++n) {
-      if (touches(lo, hi, reg::kSm0 + reg::kSmStride * n + reg::sm::kActivate, 1)) {
-        set_al_event(reg::al_event::kSmActivation, false);
+    if (touches(lo, hi, reg::kSm0, reg::kSmStride * sm_count)) {
+      for (int n = 0; n < sm_count; ++n) {
+        if (touches(lo, hi, reg::kSm0 + reg::kSmStride * n + reg::sm::kActivate, 1)) {
+          set_al_event(reg::al_event::kSmActivation, false);
+        }
       }
     }
   } else {

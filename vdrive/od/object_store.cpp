@@ -117,14 +117,6 @@ SdoAbort ObjectStore::write(std::uint16_t index, std::uint8_t subindex,
   return SdoAbort::Ok;
 }
 
-std::span<std::uint8_t> ObjectStore::raw(const EntryDesc& entry) {
-  return {values_.data() + entry.value_offset, entry.value_bytes};
-}
-
-std::span<const std::uint8_t> ObjectStore::raw(const EntryDesc& entry) const {
-  return {values_.data() + entry.value_offset, entry.value_bytes};
-}
-
 void ObjectStore::on_write(std::uint16_t index, WriteHook hook) {
   // After the hooks already installed for this index: they run in installation order.
   const auto at = std::upper_bound(hooks_.begin(), hooks_.end(), index,

@@ -27,8 +27,12 @@ public:
                  firmware::AlState state);
 
   // Firmware-side access: no state or access checks (the drive updates its own ro objects).
-  std::span<std::uint8_t> raw(const EntryDesc& entry);
-  std::span<const std::uint8_t> raw(const EntryDesc& entry) const;
+  std::span<std::uint8_t> raw(const EntryDesc& entry) {
+    return {values_.data() + entry.value_offset, entry.value_bytes};
+  }
+  std::span<const std::uint8_t> raw(const EntryDesc& entry) const {
+    return {values_.data() + entry.value_offset, entry.value_bytes};
+  }
 
   // Called before a checked write is stored; return non-Ok to refuse it with that abort code.
   // Installed by the firmware at start-up (allocation allowed then, never per access).

@@ -97,16 +97,29 @@ bool MailboxModule::sm_full(int n) {
   return (context_.pdi.read_u8(sm_register(n, reg::sm::kStatus)) & reg::sm::kMailboxFull) != 0;
 }
 
-// SM windows as the master configured them (start/length only: reading them has no side effect).
+bool MailboxModule::has_outgoing() const {
+  return !queue_.empty() || emergency_count_ > 0 || duplicate_pending_;
+}
+
+// SM windows as the master configured them (start/length/control/status: no side effect).
 void MailboxModule::service(Nanos now) {
-  sm0_start_ = context_.pdi.read_u16(sm_register(0, reg::sm::kStart));
-  sm0_length_ = context_.pdi.read_u16(sm_register(0, reg::sm::kLength));
-  sm1_start_ = context_.pdi.read_u16(sm_register(1, reg::sm::kStart));
-  sm1_length_ = context_.pdi.read_u16(sm_register(1, reg::sm::kLength));
+  const SmChannel sm0 = context_.pdi.read_sm_window(0);
+  const SmChannel sm1 = context_.pdi.read_sm_window(1);
+  sm0_start_ = sm0.start;
+  sm0_length_ = sm0.length;
+  sm1_start_ = sm1.start;
+  sm1_length_ = sm1.length;
   reply_capacity_ = std::min<std::size_t>(sm1_length_, sent_.size());
   // Smaller windows than any SDO frame are refused at Init->PreOp by the product's rules; the
   // guard keeps the reply arithmetic safe whatever the master configured.
   if (reply_capacity_ < kMinimumWindow || sm0_length_ < kMinimumWindow) return;
+  // An idle mailbox keeps SM1's read event set (the master read the last reply), as the silicon
+  // does, so this runs on every interrupt of the drive: with no request in SM0 and nothing to
+  // send there is nothing more to do.
+  if ((sm0.status & reg::sm::kMailboxFull) == 0 && !has_outgoing()) {
+    queue_fragments();
+    if (!has_outgoing()) return;
+  }
   send_next();
   while (queue_.size() < kReplySlots && sm_full(0)) {
     receive_request(now);

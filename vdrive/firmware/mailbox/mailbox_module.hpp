@@ -87,6 +87,7 @@ private:
   void put_sm1(std::span<const std::uint8_t> message);
   void service_repeat_request();
   bool sm_full(int n);
+  bool has_outgoing() const;  // a reply, an emergency or an injected duplicate waits for SM1
   bool write_duplicate();
 
   FirmwareContext& context_;
