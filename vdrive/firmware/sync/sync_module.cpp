@@ -61,11 +61,11 @@ void SyncModule::on_events(std::uint32_t events, Nanos now) {
       const std::uint64_t system_now = read_u64(context_.pdi, reg::kDcSystemTime);
       Nanos cycle_at = now;
       if (system_now >= edge && system_now - edge < cycle) cycle_at = now - static_cast<Nanos>(system_now - edge);
-      handle(monitor_.on_edge(edge, now, cycle), now, cycle_at);
+      handle(monitor_.on_edge(edge, now, cycle), cycle_at);
     }
   }
   if ((events & kSm2Event) && monitor_.running() && decision_.mode == SyncMode::Sm2Event)
-    handle(monitor_.on_edge(static_cast<std::uint64_t>(now), now), now, now);
+    handle(monitor_.on_edge(static_cast<std::uint64_t>(now), now), now);
 }
 
 CheckResult SyncModule::check_transition(AlState from, AlState to) {
@@ -124,7 +124,7 @@ void SyncModule::entered(AlState from, AlState to, Nanos now) {
   }
 }
 
-void SyncModule::tick(Nanos now) { handle(monitor_.on_timer(now), now, now); }
+void SyncModule::tick(Nanos now) { handle(monitor_.on_timer(now), now); }
 
 Nanos SyncModule::next_deadline() const { return monitor_.next_deadline(); }
 
@@ -133,7 +133,7 @@ void SyncModule::run_cycle(Nanos now) {
   for (auto& task : tasks_) task(now);
 }
 
-void SyncModule::handle(const MonitorReport& r, Nanos now, Nanos cycle_at) {
+void SyncModule::handle(const MonitorReport& r, Nanos cycle_at) {
   if (r.missed > 0) {
     if (rules_.spec.sm_event_missed_subindex != 0) {
       objects_.count(kOutputSync, rules_.spec.sm_event_missed_subindex, static_cast<std::uint64_t>(r.missed));

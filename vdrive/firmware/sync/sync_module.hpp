@@ -53,7 +53,7 @@ public:
 
 private:
   // `cycle_at`: when the cycle's sync point was (the SYNC0 pulse), which the loop may see late.
-  void handle(const MonitorReport& report, Nanos now, Nanos cycle_at);
+  void handle(const MonitorReport& report, Nanos cycle_at);
   void run_cycle(Nanos now);
   void publish_running_values(const SyncSettings& settings);
   MonitorConfig monitor_config() const;
