@@ -42,6 +42,16 @@ private:
   // One round of the line, `until` at the latest; returns how long to wait at the master's end
   // for a reply the round sent (0: none sent).
   Nanos serve_round(Nanos until);
+  // The master's end: a reply within `wait` (captured if asked).
+  std::size_t take_reply(std::span<std::uint8_t> buf, Nanos wait);
+  // The wait ended with no reply. If the host kept this thread from running (it serves the line
+  // and the master alike), the line did not get to answer in time, which a line of its own would
+  // have: so what it owed by `deadline` — the answer to a frame waiting at its port, a reply a
+  // wire fault held until then — is sent now and still counts. A reply held past the deadline
+  // does not.
+  std::size_t catch_up(std::span<std::uint8_t> buf, Nanos deadline);
+  // A reply on veth reaches the other end within microseconds; this bounds the wait for it.
+  static constexpr Nanos kHandover = 100'000;
 
   network::Network& network_;
   const Clock& clock_;
