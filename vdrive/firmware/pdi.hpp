@@ -71,9 +71,18 @@ public:
   }
 
   // Reads SyncManager n's eight channel bytes in one access (as a µC would, one burst).
-  SmChannel read_sm(int n) {
+  SmChannel read_sm(int n) { return read_sm_bytes(n, 8); }
+  // Reads SyncManager n's start, length, control and status (bytes 0-5) in one access; unlike
+  // read_sm it does not touch the activate register, so the "SM changed" event is left alone
+  // (activate and PDI control read as 0).
+  SmChannel read_sm_window(int n) { return read_sm_bytes(n, 6); }
+
+  std::uint32_t irq() const { return esc_.pdi_irq(); }
+
+private:
+  SmChannel read_sm_bytes(int n, std::size_t count) {
     std::array<std::uint8_t, 8> b{};
-    esc_.pdi_read(static_cast<std::uint16_t>(reg::kSm0 + n * reg::kSmStride), b);
+    esc_.pdi_read(static_cast<std::uint16_t>(reg::kSm0 + n * reg::kSmStride), std::span(b).first(count));
     SmChannel sm;
     sm.start = static_cast<std::uint16_t>(b[0] | (b[1] << 8));
     sm.length = static_cast<std::uint16_t>(b[2] | (b[3] << 8));
@@ -83,22 +92,7 @@ public:
     sm.pdi_control = b[7];
     return sm;
   }
-  // Reads SyncManager n's start, length, control and status (bytes 0-5) in one access; unlike
-  // read_sm it does not touch the activate register, so the "SM changed" event is left alone.
-  SmChannel read_sm_window(int n) {
-    std::array<std::uint8_t, 6> b{};
-    esc_.pdi_read(static_cast<std::uint16_t>(reg::kSm0 + n * reg::kSmStride), b);
-    SmChannel sm;
-    sm.start = static_cast<std::uint16_t>(b[0] | (b[1] << 8));
-    sm.length = static_cast<std::uint16_t>(b[2] | (b[3] << 8));
-    sm.control = b[4];
-    sm.status = b[5];
-    return sm;
-  }
 
-  std::uint32_t irq() const { return esc_.pdi_irq(); }
-
-private:
   esc::Esc& esc_;
 };
 
