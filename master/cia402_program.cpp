@@ -151,6 +151,17 @@ void SineProgram::inputs(std::span<std::uint8_t> image) {
   }
 }
 
+void SineProgram::attach(OpRunOptions& options) {
+  options.preop = [this](Master& m) { preop(m); };
+  options.outputs = [this](std::span<std::uint8_t> image) { outputs(image); };
+  options.inputs = [this](std::span<std::uint8_t> image) { inputs(image); };
+  options.done = [this] { return done(); };
+}
+
+std::uint64_t SineProgram::cycles_needed(Nanos cycle) const {
+  return static_cast<std::uint64_t>((options_.settle + options_.motion) / cycle) + 5000;
+}
+
 bool SineProgram::done() const {
   bool any = false;
   for (const Channel& c : channels_) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/clock.hpp"
+#include "master/op_run.hpp"
 
 namespace vdrive::master {
 
@@ -53,6 +54,10 @@ public:
   void outputs(std::span<std::uint8_t> image);   // OpRunOptions::outputs
   void inputs(std::span<std::uint8_t> image);    // OpRunOptions::inputs
   bool done() const;                             // OpRunOptions::done: every drive ran its sine
+  // Runs this program in `options` (preop, outputs, inputs, done); it must outlive the run.
+  void attach(OpRunOptions& options);
+  // Bus cycles of length `cycle` that settling and the sine take, with 5,000 to spare for enabling.
+  std::uint64_t cycles_needed(Nanos cycle) const;
 
   const std::vector<DriveResult>& results() const { return results_; }
 

@@ -69,9 +69,7 @@ public:
     op.mailbox_timeout = 20'000'000;
     op.cycles = warmup;
     op.back_to_init = false;
-    op.preop = [this](master::Master& m) { program_->preop(m); };
-    op.outputs = [this](std::span<std::uint8_t> image) { program_->outputs(image); };
-    op.inputs = [this](std::span<std::uint8_t> image) { program_->inputs(image); };
+    program_->attach(op);
     const master::OpRunResult result = master::run_to_op(*master_, op);
     if (!result.ok()) throw std::runtime_error("line did not run in Op: " + result.error);
     task_.emplace(master_->transport(), result.layout, products_.size(), cycle, result.reference_station);

@@ -193,11 +193,8 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
   std::optional<vdrive::master::SineProgram> program;
   if (sine) {
     program.emplace(*sine);
-    options.preop = [&](Master& m) { program->preop(m); };
-    options.outputs = [&](std::span<std::uint8_t> image) { program->outputs(image); };
-    options.inputs = [&](std::span<std::uint8_t> image) { program->inputs(image); };
-    options.done = [&] { return program->done(); };
-    options.cycles = static_cast<std::uint64_t>((sine->settle + sine->motion) / options.cycle) + 5000;
+    program->attach(options);
+    options.cycles = program->cycles_needed(options.cycle);
   }
   const auto result = vdrive::master::run_to_op(master, options, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
   for (const auto& note : result.notes) std::printf("note: %s\n", note.c_str());

@@ -31,11 +31,8 @@ TEST(Cia402Sine, EachDriveFollowsASineInCspAt1msDc) {
   options.dc = true;
   options.drift_frames = 200;
   options.mailbox_timeout = 20'000'000;
-  options.preop = [&](Master& m) { program.preop(m); };
-  options.outputs = [&](std::span<std::uint8_t> image) { program.outputs(image); };
-  options.inputs = [&](std::span<std::uint8_t> image) { program.inputs(image); };
-  options.done = [&] { return program.done(); };
-  options.cycles = static_cast<std::uint64_t>((sine.settle + sine.motion) / options.cycle) + 5000;
+  program.attach(options);
+  options.cycles = program.cycles_needed(options.cycle);
 
   const OpRunResult result = run_to_op(master, options);
   ASSERT_TRUE(result.reached_op) << result.error;
@@ -72,10 +69,7 @@ TEST(Cia402Sine, RevolutionsScaleEachDrivesOwnRevolution) {
     options.dc = true;
     options.drift_frames = 200;
     options.mailbox_timeout = 20'000'000;
-    options.preop = [&](Master& m) { program.preop(m); };
-    options.outputs = [&](std::span<std::uint8_t> image) { program.outputs(image); };
-    options.inputs = [&](std::span<std::uint8_t> image) { program.inputs(image); };
-    options.done = [&] { return program.done(); };
+    program.attach(options);
     options.cycles = 2000;
     ASSERT_TRUE(run_to_op(master, options).reached_op);
     for (const DriveResult& r : program.results()) {

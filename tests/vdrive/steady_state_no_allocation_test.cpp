@@ -42,9 +42,7 @@ TEST(SteadyStateNoAllocation, ThreeDrivesInCspWithDcAndPlantsAllocateNothing) {
   op.mailbox_timeout = 20'000'000;
   op.cycles = 1000;  // warm-up in Op: enabling, settle, the sine under way
   op.back_to_init = false;
-  op.preop = [&](master::Master& mm) { program.preop(mm); };
-  op.outputs = [&](std::span<std::uint8_t> image) { program.outputs(image); };
-  op.inputs = [&](std::span<std::uint8_t> image) { program.inputs(image); };
+  program.attach(op);  // the sine runs far longer than the test, so done() stays false
   const master::OpRunResult result = master::run_to_op(m, op);
   ASSERT_TRUE(result.ok()) << result.error;
   ASSERT_NE(result.reference_station, 0) << "DC must be running";

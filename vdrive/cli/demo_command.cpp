@@ -171,11 +171,8 @@ void run_demo(const DemoOptions& opt) {
         sine.frequency_hz = 0.5;
         sine.revolutions = 0.25;
         program.emplace(sine);
-        op.preop = [&](master::Master& mm) { program->preop(mm); };
-        op.outputs = [&](std::span<std::uint8_t> image) { program->outputs(image); };
-        op.inputs = [&](std::span<std::uint8_t> image) { program->inputs(image); };
-        op.done = [&] { return program->done(); };
-        op.cycles = std::max<std::uint64_t>(op.cycles, static_cast<std::uint64_t>((sine.settle + sine.motion) / op.cycle) + 5000);
+        program->attach(op);
+        op.cycles = std::max(op.cycles, program->cycles_needed(op.cycle));
       }
       const master::OpRunResult r = master::run_to_op(m, op, [](const std::string& line) { fmt::print("  {}\n", line); });
       for (const std::string& note : r.notes) fmt::print("  note: {}\n", note);
