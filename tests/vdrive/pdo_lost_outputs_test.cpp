@@ -12,6 +12,7 @@
 #include <span>
 
 #include "master/cia402_program.hpp"
+#include "tests/vdrive/dc_sine_line.hpp"
 #include "master/cyclic_task.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
@@ -27,19 +28,10 @@ TEST(PdoLostOutputs, A6bBridgesACycleWithNoFrameInsteadOfHoldingTheTarget) {
   master::Master m{line, line.clock()};
   ASSERT_EQ(m.scan(), 1u);
 
-  master::SineProgramOptions sine;
-  sine.cycle = kCycle;
-  sine.settle = 100'000'000;
-  sine.motion = 60'000'000'000;
-  master::SineProgram program(sine);
-  master::OpRunOptions op;
-  op.cycle = kCycle;
-  op.dc = true;
-  op.drift_frames = 200;
-  op.mailbox_timeout = 20'000'000;
+  test::DcSineLine dc(kCycle);
+  master::OpRunOptions& op = dc.op;
+  const master::SineProgram& program = dc.program;
   op.cycles = 300;  // enabled, settled, moving
-  op.back_to_init = false;
-  program.attach(op);  // the sine runs far longer than the test, so done() stays false
   const master::OpRunResult result = master::run_to_op(m, op);
   ASSERT_TRUE(result.ok()) << result.error;
   ASSERT_NE(result.reference_station, 0) << "DC must be running";

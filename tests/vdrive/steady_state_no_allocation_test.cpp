@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "master/cia402_program.hpp"
+#include "tests/vdrive/dc_sine_line.hpp"
 #include "master/cyclic_task.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
@@ -30,19 +31,10 @@ TEST(SteadyStateNoAllocation, ThreeDrivesInCspWithDcAndPlantsAllocateNothing) {
   master::Master m{line, line.clock()};
   ASSERT_EQ(m.scan(), 3u);
 
-  master::SineProgramOptions sine;
-  sine.cycle = kCycle;
-  sine.settle = 100'000'000;
-  sine.motion = 60'000'000'000;  // longer than the test: the drives keep moving throughout
-  master::SineProgram program(sine);
-  master::OpRunOptions op;
-  op.cycle = kCycle;
-  op.dc = true;
-  op.drift_frames = 200;
-  op.mailbox_timeout = 20'000'000;
+  test::DcSineLine dc(kCycle);  // the sine outlasts the test: the drives keep moving throughout
+  master::OpRunOptions& op = dc.op;
+  const master::SineProgram& program = dc.program;
   op.cycles = 1000;  // warm-up in Op: enabling, settle, the sine under way
-  op.back_to_init = false;
-  program.attach(op);  // the sine runs far longer than the test, so done() stays false
   const master::OpRunResult result = master::run_to_op(m, op);
   ASSERT_TRUE(result.ok()) << result.error;
   ASSERT_NE(result.reference_station, 0) << "DC must be running";
