@@ -59,6 +59,7 @@ public:
       case 1: bytes[0] = static_cast<std::uint8_t>(raw); break;
       case 2: { const auto v = static_cast<std::uint16_t>(raw); std::memcpy(bytes, &v, 2); break; }
       case 4: { const auto v = static_cast<std::uint32_t>(raw); std::memcpy(bytes, &v, 4); break; }
+      case 8: std::memcpy(bytes, &raw, 8); break;
       default: std::memcpy(bytes, &raw, width_); break;
     }
   }

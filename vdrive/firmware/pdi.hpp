@@ -31,6 +31,11 @@ struct SmChannel {
 
 inline constexpr int kMaxSyncManagers = reg::kMaxSyncManagers;
 
+// Address of SyncManager n's channel register at `offset` (reg::sm::k*), 0x0800 + 8n + offset.
+inline std::uint16_t sm_register(int n, std::uint16_t offset = 0) {
+  return static_cast<std::uint16_t>(reg::kSm0 + reg::kSmStride * n + offset);
+}
+
 class Pdi {
 public:
   explicit Pdi(esc::Esc& esc) : esc_(esc) {}
@@ -82,7 +87,7 @@ public:
 private:
   SmChannel read_sm_bytes(int n, std::size_t count) {
     std::array<std::uint8_t, 8> b{};
-    esc_.pdi_read(static_cast<std::uint16_t>(reg::kSm0 + n * reg::kSmStride), std::span(b).first(count));
+    esc_.pdi_read(sm_register(n), std::span(b).first(count));
     SmChannel sm;
     sm.start = static_cast<std::uint16_t>(b[0] | (b[1] << 8));
     sm.length = static_cast<std::uint16_t>(b[2] | (b[3] << 8));

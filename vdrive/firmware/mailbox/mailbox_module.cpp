@@ -19,9 +19,6 @@ constexpr std::size_t kMinimumWindow = kHeaderSize + 16;  // header + an SDO fra
 std::size_t larger(std::uint16_t a, const std::optional<std::uint16_t>& b) {
   return std::max<std::size_t>(a, b.value_or(0));
 }
-std::uint16_t sm_register(int n, std::uint16_t offset) {
-  return static_cast<std::uint16_t>(reg::kSm0 + reg::kSmStride * n + offset);
-}
 }  // namespace
 
 MailboxModule::MailboxModule(FirmwareContext& context, const MailboxOptions& options)

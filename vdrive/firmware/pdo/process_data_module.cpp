@@ -95,7 +95,7 @@ void ProcessDataModule::exchange_outputs(Nanos now) {
   // taking the old target again as if the axis were to stand still for a cycle.
   bool fresh = true;
   if (cycle_by_sync_) {
-    const std::uint8_t status = ctx_.pdi.read_u8(static_cast<std::uint16_t>(reg::kSm0 + kOutputsSm * reg::kSmStride + reg::sm::kStatus));
+    const std::uint8_t status = ctx_.pdi.read_u8(sm_register(kOutputsSm, reg::sm::kStatus));
     fresh = new_outputs_ || (status & reg::sm::kIrqWrite) != 0;
     new_outputs_ = false;
   }
