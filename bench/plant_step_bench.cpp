@@ -54,6 +54,15 @@ void BM_RigidAxes(benchmark::State& state) {
 }
 BENCHMARK(BM_RigidAxes)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Arg(16);
 
+// The same axes stepped by ODE instead of the closed form (plant/lone_hinge_step.hpp).
+void BM_RigidAxesOde(benchmark::State& state) {
+  PlantDescription d = rigid_axes(static_cast<int>(state.range(0)), false);
+  d.closed_form_hinges = false;
+  Plant p(d);
+  run(state, p);
+}
+BENCHMARK(BM_RigidAxesOde)->Arg(1)->Arg(16);
+
 void BM_TwoMassAxes(benchmark::State& state) {
   Plant p(rigid_axes(static_cast<int>(state.range(0)), true));
   run(state, p);

@@ -10,6 +10,7 @@
 
 #include "plant/friction.hpp"
 #include "plant/load_profile.hpp"
+#include "plant/lone_hinge_step.hpp"
 #include "plant/motor_torque.hpp"
 #include "plant/thermal_network.hpp"
 
@@ -50,6 +51,26 @@ double load_per_motor_rad(const TransmissionSpec& t, JointType joint) {
 
 [[noreturn]] void fail(const std::string& what) { throw PlantError(what); }
 
+// Inertia of a joint's body about its hinge axis; `residual` is how far that axis is from being a
+// principal axis (|I n - (n.I n) n|). The axis is taken in the body frame, where turning about it
+// does not move it.
+double inertia_about_hinge(dJointID hinge, dBodyID body, double* residual = nullptr) {
+  dVector3 axis;
+  dJointGetHingeAxis(hinge, axis);
+  const dReal* r = dBodyGetRotation(body);
+  double n[3];
+  for (int i = 0; i < 3; ++i) n[i] = r[0 * 4 + i] * axis[0] + r[1 * 4 + i] * axis[1] + r[2 * 4 + i] * axis[2];
+  dMass m;
+  dBodyGetMass(body, &m);
+  double in[3], jn = 0;
+  for (int i = 0; i < 3; ++i) {
+    in[i] = m.I[i * 4 + 0] * n[0] + m.I[i * 4 + 1] * n[1] + m.I[i * 4 + 2] * n[2];
+    jn += n[i] * in[i];
+  }
+  if (residual) *residual = std::hypot(in[0] - jn * n[0], in[1] - jn * n[1], in[2] - jn * n[2]);
+  return jn;
+}
+
 }  // namespace
 
 struct Plant::Impl {
@@ -67,6 +88,11 @@ struct Plant::Impl {
     double pos = 0, vel = 0;      // continuous position (hinge angle unwrapped)
     double prev_raw = 0;
     bool fault_stops = false;     // jam/obstacle stops are set (hinge: its angle frame moved)
+    // Closed form (lone_hinge_step.hpp): lone_inertia > 0 where it applies; while `closed`, the
+    // ODE body is disabled and stale by pos - ode_pos about the hinge axis.
+    double lone_inertia = 0;
+    bool closed = false;
+    double ode_pos = 0;
   };
   struct Axis {
     AxisSpec spec;
@@ -104,6 +130,7 @@ struct Plant::Impl {
   std::vector<Joint> joints;
   std::vector<Axis> axes;
   double dt = 0;
+  int ode_bodies_enabled = 0;   // dWorldStep is skipped when every body is stepped in closed form
   std::int64_t steps = 0;
   Nanos step_ns = 0;
 
@@ -139,6 +166,8 @@ struct Plant::Impl {
   void add_axis_load_body(AxisSpec& a, std::size_t index);
   void create_joint(Joint& j);
   void place_initial(const Joint& j);
+  void find_lone_hinges();
+  void set_closed(Joint& j, bool closed);
   void substep(double t);
   void finish_step();
   void set_stops(const Joint& j, double lo, double hi);
@@ -372,6 +401,7 @@ void Plant::Impl::build() {
   }
   finish_step();
   for (Axis& a : axes) a.fb.encoder = a.encoder.reading();
+  find_lone_hinges();
 }
 
 void Plant::Impl::substep(double t) {
@@ -379,7 +409,9 @@ void Plant::Impl::substep(double t) {
     Joint& j = joints[a.joint];
     const MotorParams& m = a.spec.motor;
     const TransmissionSpec& tr = a.spec.transmission;
-    if (a.faults.jam || a.faults.obstacle || j.fault_stops) apply_fault_stops(a);
+    const bool fault_stops = a.faults.jam || a.faults.obstacle || j.fault_stops;
+    if (j.lone_inertia > 0 && j.closed == fault_stops) set_closed(j, !fault_stops);  // stops: ODE's
+    if (fault_stops) apply_fault_stops(a);
     const double theta = a.motor_angle(j), w = a.motor_vel(j);
 
     double torque;
@@ -412,7 +444,9 @@ void Plant::Impl::substep(double t) {
       load_force += torque / a.r * tr.efficiency;
       if (braked) dry += a.spec.brake.holding_torque_nm / a.r;
     }
-    if (j.spec.type == JointType::hinge) {
+    if (j.closed) {
+      lone_hinge_step(j.pos, j.vel, j.lone_inertia, load_force, dry, dt);
+    } else if (j.spec.type == JointType::hinge) {
       dJointAddHingeTorque(j.id, load_force);
       dJointSetHingeParam(j.id, dParamFMax, dry);
     } else {
@@ -424,10 +458,64 @@ void Plant::Impl::substep(double t) {
     if (b.manual_gravity)
       dBodyAddForce(b.id, b.own_mass * desc.gravity[0], b.own_mass * desc.gravity[1],
                     b.own_mass * desc.gravity[2]);
+  if (ode_bodies_enabled == 0) return;
   dWorldStep(world, dt);
-  for (Joint& j : joints) read_joint(j);
+  for (Joint& j : joints)
+    if (!j.closed) read_joint(j);
   for (Axis& a : axes)
     if (a.two_mass) read_rotor(a);
+}
+
+// A hinge is stepped in closed form when its body hangs from the world by it alone and carries no
+// other joint, turns about a principal axis through its centre (no gravity or gyroscopic torque on
+// the locked freedoms), has no machine end stops, and is driven by a rigid axis.
+void Plant::Impl::find_lone_hinges() {
+  ode_bodies_enabled = static_cast<int>(bodies.size());
+  for (const Axis& a : axes)
+    if (a.two_mass) ++ode_bodies_enabled;
+  if (!desc.closed_form_hinges) return;
+  for (const Axis& a : axes) {
+    Joint& j = joints[a.joint];
+    if (a.two_mass || j.spec.type != JointType::hinge || j.parent >= 0 || j.spec.lower_stop || j.spec.upper_stop)
+      continue;
+    const bool carries = std::any_of(joints.begin(), joints.end(), [&](const Joint& k) { return k.parent == j.child; });
+    if (carries) continue;
+    const dBodyID body = bodies[j.child].id;
+    dVector3 axis, anchor;
+    dJointGetHingeAxis(j.id, axis);
+    dJointGetHingeAnchor(j.id, anchor);
+    const dReal* p = dBodyGetPosition(body);
+    const double d[3] = {p[0] - anchor[0], p[1] - anchor[1], p[2] - anchor[2]};
+    if (std::hypot(d[1] * axis[2] - d[2] * axis[1], d[2] * axis[0] - d[0] * axis[2], d[0] * axis[1] - d[1] * axis[0]) > 1e-9)
+      continue;
+    double residual = 0;
+    const double inertia = inertia_about_hinge(j.id, body, &residual);
+    if (residual <= 1e-9 * inertia) j.lone_inertia = inertia;
+  }
+}
+
+// Hands a lone hinge to the closed form (its ODE body disabled) or back to ODE, turning the stale
+// body by what the closed form moved it and giving it the closed form's speed.
+void Plant::Impl::set_closed(Joint& j, bool closed) {
+  const dBodyID body = bodies[j.child].id;
+  if (closed) {
+    j.ode_pos = j.pos;
+    dBodyDisable(body);
+    --ode_bodies_enabled;
+  } else {
+    dVector3 n;
+    dJointGetHingeAxis(j.id, n);
+    dQuaternion turn, q;
+    dQFromAxisAndAngle(turn, n[0], n[1], n[2], j.pos - j.ode_pos);
+    dQMultiply0(q, turn, dBodyGetQuaternion(body));
+    dBodySetQuaternion(body, q);
+    dBodySetAngularVel(body, n[0] * j.vel, n[1] * j.vel, n[2] * j.vel);
+    dBodySetLinearVel(body, 0, 0, 0);
+    dBodyEnable(body);
+    ++ode_bodies_enabled;
+    j.prev_raw = dJointGetHingeAngle(j.id);
+  }
+  j.closed = closed;
 }
 
 // ODE limits on the joint in its own angle frame; +-dInfinity turns one off. Both are opened first
@@ -504,6 +592,7 @@ void Plant::Impl::scale_load(Axis& a, double scale) {
   for (int i = 0; i < 12; ++i) m.I[i] = a.load_own.I[i] * scale + (a.load_full.I[i] - a.load_own.I[i]);
   dBodySetMass(body.id, &m);
   body.own_mass = body.base_mass * scale;
+  if (j.lone_inertia > 0) j.lone_inertia = inertia_about_hinge(j.id, body.id);
 }
 
 void Plant::Impl::finish_step() {
@@ -650,12 +739,17 @@ double Plant::energy() const {
   // x with the new v). Potential energy is therefore taken at x - v dt/2, where the velocities
   // live; otherwise the readout would wobble by ~w*dt/2 although the motion conserves energy.
   const double half = 0.5 * p.dt;
-  for (const Impl::Body& b : p.bodies) {
-    e += kinetic(b.id);
+  for (const Impl::Joint& j : p.joints)
+    if (j.closed) e += 0.5 * j.lone_inertia * j.vel * j.vel;  // its ODE body is stale, and at rest in place
+  for (std::size_t n = 0; n < p.bodies.size(); ++n) {
+    const Impl::Body& b = p.bodies[n];
+    const bool closed = std::any_of(p.joints.begin(), p.joints.end(),
+                                    [&](const Impl::Joint& j) { return j.closed && j.child == static_cast<int>(n); });
+    if (!closed) e += kinetic(b.id);
     const dReal* x = dBodyGetPosition(b.id);
     const dReal* v = dBodyGetLinearVel(b.id);
-    double pe = 0;
-    for (int i = 0; i < 3; ++i) pe -= b.own_mass * p.desc.gravity[i] * (x[i] - v[i] * half);
+    double pe = 0;  // a closed-form body's centre is at rest on its axis
+    for (int i = 0; i < 3; ++i) pe -= b.own_mass * p.desc.gravity[i] * (x[i] - (closed ? 0.0 : v[i] * half));
     e += pe;
   }
   for (const Impl::Axis& a : p.axes) {
