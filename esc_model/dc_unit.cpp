@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/round.hpp"
+
 namespace vdrive::esc {
 namespace {
 
@@ -106,7 +108,7 @@ void DcUnit::set_drift_ppm(double ppm) { drift_ppm_ = ppm; }
 void DcUnit::set_start_offset(Nanos local_at_zero) { start_offset_ = local_at_zero; }
 
 std::uint64_t DcUnit::local_time(Nanos now) const {
-  const auto drift = static_cast<std::int64_t>(std::llround(static_cast<double>(now) * drift_ppm_ * 1e-6));
+  const auto drift = static_cast<std::int64_t>(round_to_int64(static_cast<double>(now) * drift_ppm_ * 1e-6));
   return static_cast<std::uint64_t>(start_offset_ + now + drift);
 }
 
@@ -119,7 +121,7 @@ double DcUnit::correction_at(std::int64_t local) const {
 
 std::uint64_t DcUnit::system_time(Nanos now) const {
   const auto local = static_cast<std::int64_t>(local_time(now));
-  return static_cast<std::uint64_t>(local + system_offset_ + std::llround(correction_at(local)));
+  return static_cast<std::uint64_t>(local + system_offset_ + round_to_int64(correction_at(local)));
 }
 
 void DcUnit::reset_control_loop(Nanos now) {
@@ -136,7 +138,7 @@ void DcUnit::reset_control_loop(Nanos now) {
 void DcUnit::compare_system_time(std::uint32_t received, Nanos now) {
   const auto local = static_cast<std::int64_t>(local_time(now));
   const double corr = correction_at(local);
-  const auto copy = static_cast<std::uint64_t>(local + system_offset_ + std::llround(corr));
+  const auto copy = static_cast<std::uint64_t>(local + system_offset_ + round_to_int64(corr));
   // Positive: the local copy is ahead of the reference (as it arrives here, delay included).
   const auto diff = static_cast<std::int32_t>(static_cast<std::uint32_t>(copy) - (received + system_delay_));
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/round.hpp"
+
 #include "vdrive/drive/control/motor_setpoint.hpp"
 #include "vdrive/drive/modes/cyclic_position_mode.hpp"
 #include "vdrive/drive/modes/cyclic_torque_mode.hpp"
@@ -38,13 +40,12 @@ std::unique_ptr<ModeHandler> make_handler(std::int8_t m, const DriveContext& ctx
 
 std::int32_t saturate_i32(double v) {
   if (!(v == v)) return 0;
-  return static_cast<std::int32_t>(std::clamp(std::llround(std::clamp(v, -2.2e9, 2.2e9)),
-                                              static_cast<long long>(INT32_MIN), static_cast<long long>(INT32_MAX)));
+  return static_cast<std::int32_t>(std::clamp<std::int64_t>(round_to_int64(std::clamp(v, -2.2e9, 2.2e9)), INT32_MIN, INT32_MAX));
 }
 
 std::int16_t saturate_i16(double v) {
   if (!(v == v)) return 0;
-  return static_cast<std::int16_t>(std::clamp(std::lround(std::clamp(v, -40000.0, 40000.0)), -32768L, 32767L));
+  return static_cast<std::int16_t>(std::clamp<std::int64_t>(round_to_int64(std::clamp(v, -40000.0, 40000.0)), -32768, 32767));
 }
 
 }  // namespace
