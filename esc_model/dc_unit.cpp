@@ -108,6 +108,7 @@ void DcUnit::set_drift_ppm(double ppm) { drift_ppm_ = ppm; }
 void DcUnit::set_start_offset(Nanos local_at_zero) { start_offset_ = local_at_zero; }
 
 std::uint64_t DcUnit::local_time(Nanos now) const {
+  if (drift_ppm_ == 0.0) return static_cast<std::uint64_t>(start_offset_ + now);  // read on every deadline query
   const auto drift = static_cast<std::int64_t>(round_to_int64(static_cast<double>(now) * drift_ppm_ * 1e-6));
   return static_cast<std::uint64_t>(start_offset_ + now + drift);
 }

@@ -148,6 +148,31 @@ TEST_P(MailboxOnProduct, RepliesQueueWhileSm1IsFull) {
   EXPECT_FALSE(b.receive().has_value());
 }
 
+// The ESC keeps SM1's event set once the master read the last message; the firmware masks it then
+// (else a level-triggered PDI interrupt would never end) and unmasks it while a message waits.
+TEST_P(MailboxOnProduct, Sm1EventIsUnmaskedOnlyWhileAMessageWaits) {
+  constexpr std::uint32_t kSm1Event = 1u << 9;
+  Bench b(load(GetParam()));
+  b.to_preop();
+  ASSERT_TRUE(b.exchange(kCoE, vendor_id_request()).has_value());
+  EXPECT_NE(b.pdi.read_u32(reg::kAlEventRequest) & kSm1Event, 0u) << "the master read SM1";
+  EXPECT_EQ(b.pdi.read_u32(reg::kAlEventMask) & kSm1Event, 0u) << "idle: masked";
+  EXPECT_EQ(b.esc.pdi_irq(), 0u) << "no interrupt while idle";
+
+  // Two requests: the first reply fills SM1, the second waits, so SM1's read must be seen.
+  b.counter = 2;
+  ASSERT_EQ(b.send(message(kCoE, 3, vendor_id_request())), 1);
+  ASSERT_EQ(b.send(message(kCoE, 4, sdo_payload(0x40, 0x1018, 0x02))), 1);
+  EXPECT_EQ(b.module.pending_replies(), 1u);
+  EXPECT_NE(b.pdi.read_u32(reg::kAlEventMask) & kSm1Event, 0u) << "a reply waits: unmasked";
+  ASSERT_TRUE(b.receive().has_value());   // reading SM1 interrupts the firmware: it sends the next
+  auto second = b.receive();
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(second->at(11), 0x02);
+  EXPECT_EQ(b.pdi.read_u32(reg::kAlEventMask) & kSm1Event, 0u) << "idle again";
+  EXPECT_EQ(b.esc.pdi_irq(), 0u);
+}
+
 TEST_P(MailboxOnProduct, EmergenciesFromInitAreSentOnPreOpNewestEight) {
   Bench b(load(GetParam()));
   for (std::uint16_t i = 1; i <= 10; ++i) {

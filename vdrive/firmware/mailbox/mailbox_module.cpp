@@ -40,14 +40,27 @@ MailboxModule::MailboxModule(FirmwareContext& context, const MailboxOptions& opt
 
 MailboxModule::~MailboxModule() = default;
 
+// SM1's event is not in the fixed set: the module unmasks it itself while it needs it (watch_sm1).
 std::uint32_t MailboxModule::serviced_events() const {
-  return sm_event(0) | sm_event(1) | al_event::kSmActivation;
+  return sm_event(0) | al_event::kSmActivation;
 }
 
 void MailboxModule::on_events(std::uint32_t events, Nanos now) {
   if (!running_) return;
   if (events & al_event::kSmActivation) service_repeat_request();
   if (events & (sm_event(0) | sm_event(1))) service(now);
+  watch_sm1(has_outgoing());
+}
+
+// The ESC keeps SM1's read event set while the mailbox is idle (the master read the last
+// message), so a level-triggered PDI interrupt with it unmasked would fire on every pass of the
+// firmware's loop. As firmware must, the event is unmasked only while a message waits for SM1 to
+// be read (read-modify-write of 0x0204: the other bits belong to other modules).
+void MailboxModule::watch_sm1(bool on) {
+  if (on == sm1_watched_) return;
+  const std::uint32_t mask = context_.pdi.read_u32(reg::kAlEventMask);
+  context_.pdi.write_u32(reg::kAlEventMask, on ? mask | sm_event(1) : mask & ~sm_event(1));
+  sm1_watched_ = on;
 }
 
 void MailboxModule::entered(AlState from, AlState to, Nanos now) {
@@ -65,12 +78,14 @@ void MailboxModule::entered(AlState from, AlState to, Nanos now) {
     reply_counter_ = 0;
     sent_length_ = previous_length_ = 0;
     duplicate_pending_ = false;
+    watch_sm1(false);
     return;
   }
   if (from != AlState::Init) return;
   running_ = true;
   boot_ = to == AlState::Boot;
   service(now);
+  watch_sm1(has_outgoing());
 }
 
 void MailboxModule::power_on(Nanos now) {
@@ -87,7 +102,9 @@ void MailboxModule::post_emergency(const coe::Emergency& emergency) {
   }
   emergencies_[(emergency_head_ + emergency_count_) % kEmergencySlots] = emergency;
   ++emergency_count_;
-  if (running_) send_next();
+  if (!running_) return;
+  send_next();
+  watch_sm1(has_outgoing());
 }
 
 bool MailboxModule::sm_full(int n) {
@@ -110,9 +127,7 @@ void MailboxModule::service(Nanos now) {
   // Smaller windows than any SDO frame are refused at Init->PreOp by the product's rules; the
   // guard keeps the reply arithmetic safe whatever the master configured.
   if (reply_capacity_ < kMinimumWindow || sm0_length_ < kMinimumWindow) return;
-  // An idle mailbox keeps SM1's read event set (the master read the last reply), as the silicon
-  // does, so this runs on every interrupt of the drive: with no request in SM0 and nothing to
-  // send there is nothing more to do.
+  // With no request in SM0 and nothing to send there is nothing more to do.
   if ((sm0.status & reg::sm::kMailboxFull) == 0 && !has_outgoing()) {
     queue_fragments();
     if (!has_outgoing()) return;

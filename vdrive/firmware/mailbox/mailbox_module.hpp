@@ -88,12 +88,14 @@ private:
   void service_repeat_request();
   bool sm_full(int n);
   bool has_outgoing() const;  // a reply, an emergency or an injected duplicate waits for SM1
+  void watch_sm1(bool on);    // SM1's event in the AL event mask
   bool write_duplicate();
 
   FirmwareContext& context_;
   std::unique_ptr<coe::CoeServer> coe_;
   std::unique_ptr<foe::FoeServer> foe_;
   bool running_ = false;
+  bool sm1_watched_ = false;
   bool boot_ = false;
   std::uint16_t sm0_start_ = 0, sm0_length_ = 0, sm1_start_ = 0, sm1_length_ = 0;
   std::size_t reply_capacity_ = 0;   // bytes of a reply incl. header: min(SM1 length, buffer)
