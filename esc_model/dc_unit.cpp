@@ -80,6 +80,7 @@ bool overlaps(std::uint16_t offset, std::size_t len, std::uint16_t first, std::u
 DcUnit::DcUnit(const Clock& clock) : clock_(clock) { reset(); }
 
 void DcUnit::reset() {
+  ++version_;
   std::fill(std::begin(regs_), std::end(regs_), 0);
   put_le(&regs_[kSpeedCounterStart], kSpeedCounterStartReset, 2);
   regs_[kDifferenceFilterDepth] = 0x04;
@@ -104,8 +105,14 @@ void DcUnit::reset() {
 
 // ---- time ----------------------------------------------------------------------------------
 
-void DcUnit::set_drift_ppm(double ppm) { drift_ppm_ = ppm; }
-void DcUnit::set_start_offset(Nanos local_at_zero) { start_offset_ = local_at_zero; }
+void DcUnit::set_drift_ppm(double ppm) {
+  ++version_;
+  drift_ppm_ = ppm;
+}
+void DcUnit::set_start_offset(Nanos local_at_zero) {
+  ++version_;
+  start_offset_ = local_at_zero;
+}
 
 std::uint64_t DcUnit::local_time(Nanos now) const {
   if (drift_ppm_ == 0.0) return static_cast<std::uint64_t>(start_offset_ + now);  // read on every deadline query
@@ -172,6 +179,7 @@ void DcUnit::compare_system_time(std::uint32_t received, Nanos now) {
 }
 
 void DcUnit::latch_receive_times(const FrameTiming& timing) {
+  ++version_;
   const Nanos ports[4] = {timing.port0_rx, timing.port1_rx, timing.port2_rx, timing.port3_rx};
   for (int p = 0; p < 4; ++p) {
     if (ports[p] < 0) continue;
@@ -180,7 +188,10 @@ void DcUnit::latch_receive_times(const FrameTiming& timing) {
   if (timing.port0_rx >= 0) put_le(&regs_[kReceiveTimeEpu], local_time(timing.port0_rx), 8);
 }
 
-void DcUnit::load_pulse_length(std::uint16_t ten_ns_units) { put_le(&regs_[kPulseLength], ten_ns_units, 2); }
+void DcUnit::load_pulse_length(std::uint16_t ten_ns_units) {
+  ++version_;
+  put_le(&regs_[kPulseLength], ten_ns_units, 2);
+}
 
 // ---- registers -----------------------------------------------------------------------------
 
@@ -254,6 +265,7 @@ bool DcUnit::writable(std::uint16_t reg, bool from_ecat) const {
 }
 
 void DcUnit::write(std::uint16_t offset, std::span<const std::uint8_t> in, Nanos now, bool from_ecat) {
+  ++version_;
   const std::size_t len = in.size();
   std::uint8_t start_bytes[8];
   put_le(start_bytes, start_time_, 8);
@@ -347,6 +359,7 @@ void DcUnit::activate(Nanos now) {
 }
 
 SyncEvents DcUnit::tick(Nanos now) {
+  ++version_;
   SyncEvents events;
   if (!cyclic_active_ || never_reached_) return events;
   const std::uint64_t sys = system_time(now);
@@ -383,7 +396,15 @@ Nanos DcUnit::next_deadline() const {
   if ((act & kSync0Enable) || first_pulse_pending_) target = std::min(target, next_sync0_);
   if (act & kSync1Enable) target = std::min(target, next_sync1_);
   if (target == kNever) return INT64_MAX;
-  return global_time_of(target);
+  // Asked several times per wake-up of the loop at one `now`; the answer depends only on `now`
+  // and the unit's state, so it is reused while neither changed (exact, not an approximation).
+  const Nanos now = clock_.now();
+  if (now != deadline_asked_at_ || version_ != deadline_version_) {
+    deadline_ = global_time_of(target);
+    deadline_asked_at_ = now;
+    deadline_version_ = version_;
+  }
+  return deadline_;
 }
 
 Nanos DcUnit::global_time_of(std::uint64_t system) const {

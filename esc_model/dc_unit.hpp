@@ -69,7 +69,10 @@ public:
 
   // Injected fault: the schedule runs on, but no SYNC0/SYNC1 pulse is driven (no event, no
   // 0x098E/0x098F status). Kept across reset(), like the oscillator model.
-  void set_pulses_suppressed(bool suppressed) { pulses_suppressed_ = suppressed; }
+  void set_pulses_suppressed(bool suppressed) {
+    ++version_;
+    pulses_suppressed_ = suppressed;
+  }
 
   // Local and system time at global time `now`.
   std::uint64_t local_time(Nanos now) const;
@@ -125,6 +128,11 @@ private:
   bool sync0_latched_ = false;        // acknowledge-mode status 0x098E / 0x098F
   bool sync1_latched_ = false;
   bool pulses_suppressed_ = false;
+
+  std::uint64_t version_ = 0;         // bumped by every call that changes state
+  mutable Nanos deadline_asked_at_ = INT64_MIN;  // next_deadline()'s last answer, for `now` and version_
+  mutable std::uint64_t deadline_version_ = 0;
+  mutable Nanos deadline_ = 0;
 };
 
 }  // namespace vdrive::esc

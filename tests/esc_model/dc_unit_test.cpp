@@ -279,6 +279,19 @@ TEST_F(SyncFixture, NothingFiresBeforeTheEdge) {
   EXPECT_FALSE(dc.tick(d).sync0);
 }
 
+// next_deadline() reuses its answer for one `now`; a write at that same `now` must still move it.
+TEST_F(SyncFixture, DeadlineFollowsAWriteAtTheSameInstant) {
+  const std::uint64_t start = dc.system_time(clock.now()) + 300'000;
+  program(start, 1'000'000, 0, 0x03);
+  const Nanos before = dc.next_deadline();
+  EXPECT_EQ(dc.next_deadline(), before);
+  // System time 50 us ahead: the edge, a system time, comes 50 us earlier in global time.
+  wr(dc, 0x0920, 50'000, 8, clock.now());
+  EXPECT_NEAR(static_cast<double>(dc.next_deadline()), static_cast<double>(before - 50'000), 1.0);
+  wr(dc, 0x0981, 0x00, 1, clock.now());  // cyclic unit off: no edge at all
+  EXPECT_EQ(dc.next_deadline(), INT64_MAX);
+}
+
 TEST_F(SyncFixture, AcknowledgeModeStatusClearsOnRead) {
   program(dc.system_time(clock.now()) + 1'000, 500'000, 0, 0x03);
   step();

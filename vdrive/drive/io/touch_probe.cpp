@@ -169,8 +169,9 @@ void TouchProbe::step(std::uint32_t inputs_before, std::uint32_t inputs_now, con
     enable_seen_[i] = enable;
   }
 
-  const std::uint32_t before = logic_.detected(inputs_before);
-  const std::uint32_t now = logic_.detected(inputs_now);
+  const bool running = channels_[0].running || channels_[1].running;
+  const std::uint32_t before = running ? logic_.detected(inputs_before) : 0;  // idle: not needed
+  const std::uint32_t now = running ? logic_.detected(inputs_now) : 0;
   const double start_position = have_previous_ ? previous_position_ : s.position;
   const std::uint64_t start_time = have_previous_ ? previous_time_ns_ : system_time_ns;
   const double mid_position = 0.5 * (start_position + s.position);
