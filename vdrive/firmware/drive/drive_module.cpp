@@ -39,24 +39,30 @@ bool DriveModule::raise_al_error(Nanos now) {
   return code != 0 && engine_->raise_al_error(code, now);
 }
 
+// The bus state costs a PDI read of the DC system time: taken only when a control step is due
+// (advance_to does nothing otherwise).
+void DriveModule::catch_up(Nanos now) {
+  if (engine_->next_step() <= now) engine_->advance_to(now, bus());
+}
+
 void DriveModule::entered(AlState from, AlState to, Nanos now) {
-  engine_->advance_to(now, bus());
+  catch_up(now);
   const bool by_error = raise_al_error(now);
   engine_->esm_changed(from, to, now, by_error);
 }
 
 void DriveModule::tick(Nanos now) {
   raise_al_error(now);
-  engine_->advance_to(now, bus());
+  catch_up(now);
 }
 
 Nanos DriveModule::next_deadline() const { return engine_->next_step(); }
 
 void DriveModule::after_outputs(Nanos now) {
-  engine_->advance_to(now, bus());
+  catch_up(now);
   engine_->outputs_taken(now);
 }
 
-void DriveModule::before_inputs(Nanos now) { engine_->advance_to(now, bus()); }
+void DriveModule::before_inputs(Nanos now) { catch_up(now); }
 
 }  // namespace vdrive::firmware::drive_module

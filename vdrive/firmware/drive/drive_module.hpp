@@ -40,6 +40,7 @@ public:
 
 private:
   vdrive::drive::BusState bus() const;
+  void catch_up(Nanos now);  // the control steps due by now, if any
   // Raises the alarm for a new AL status code; true if the product has one for it.
   bool raise_al_error(Nanos now);
 
