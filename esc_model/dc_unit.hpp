@@ -129,7 +129,7 @@ private:
   bool sync1_latched_ = false;
   bool pulses_suppressed_ = false;
 
-  std::uint64_t version_ = 0;         // bumped by every call that changes state
+  std::uint64_t version_ = 0;  // bumped by every call but read(), which cannot move the deadline
   mutable Nanos deadline_asked_at_ = INT64_MIN;  // next_deadline()'s last answer, for `now` and version_
   mutable std::uint64_t deadline_version_ = 0;
   mutable Nanos deadline_ = 0;

@@ -51,9 +51,29 @@ double load_per_motor_rad(const TransmissionSpec& t, JointType joint) {
 
 [[noreturn]] void fail(const std::string& what) { throw PlantError(what); }
 
-// Inertia of a joint's body about its hinge axis; `residual` is how far that axis is from being a
-// principal axis (|I n - (n.I n) n|). The axis is taken in the body frame, where turning about it
-// does not move it.
+// n.I n for a unit vector n in the mass's (body) frame; `residual` = |I n - (n.I n) n|, which is
+// zero when n is a principal axis.
+double axial_inertia(const dMass& m, const double (&n)[3], double* residual = nullptr) {
+  double in[3], jn = 0;
+  for (int i = 0; i < 3; ++i) {
+    in[i] = m.I[i * 4 + 0] * n[0] + m.I[i * 4 + 1] * n[1] + m.I[i * 4 + 2] * n[2];
+    jn += n[i] * in[i];
+  }
+  if (residual) *residual = std::hypot(in[0] - jn * n[0], in[1] - jn * n[1], in[2] - jn * n[2]);
+  return jn;
+}
+
+// What a joint moves of `m`: its mass on a slider, its inertia about the hinge axis as specified
+// (the zero configuration, where the body's frame is the world's).
+double load_along(const dMass& m, const JointSpec& js) {
+  if (js.type != JointType::hinge) return m.mass;
+  const double len = std::hypot(js.axis[0], js.axis[1], js.axis[2]);
+  const double n[3] = {js.axis[0] / len, js.axis[1] / len, js.axis[2] / len};
+  return axial_inertia(m, n);
+}
+
+// Inertia of a joint's body about its hinge axis now (see axial_inertia for `residual`). The axis
+// is taken in the body frame, where turning about it does not move it.
 double inertia_about_hinge(dJointID hinge, dBodyID body, double* residual = nullptr) {
   dVector3 axis;
   dJointGetHingeAxis(hinge, axis);
@@ -62,13 +82,7 @@ double inertia_about_hinge(dJointID hinge, dBodyID body, double* residual = null
   for (int i = 0; i < 3; ++i) n[i] = r[0 * 4 + i] * axis[0] + r[1 * 4 + i] * axis[1] + r[2 * 4 + i] * axis[2];
   dMass m;
   dBodyGetMass(body, &m);
-  double in[3], jn = 0;
-  for (int i = 0; i < 3; ++i) {
-    in[i] = m.I[i * 4 + 0] * n[0] + m.I[i * 4 + 1] * n[1] + m.I[i * 4 + 2] * n[2];
-    jn += n[i] * in[i];
-  }
-  if (residual) *residual = std::hypot(in[0] - jn * n[0], in[1] - jn * n[1], in[2] - jn * n[2]);
-  return jn;
+  return axial_inertia(m, n, residual);
 }
 
 }  // namespace
@@ -356,13 +370,7 @@ void Plant::Impl::build() {
       // Explicit coupling spring: keep omega * dt well inside the symplectic Euler stability limit.
       dMass ml;
       dBodyGetMass(load.id, &ml);
-      double jl = ml.mass;
-      if (js.type == JointType::hinge) {
-        const double n = std::hypot(js.axis[0], js.axis[1], js.axis[2]);
-        jl = 0;
-        for (int i = 0; i < 3; ++i)
-          for (int k = 0; k < 3; ++k) jl += js.axis[i] / n * ml.I[i * 4 + k] * js.axis[k] / n;
-      }
+      const double jl = load_along(ml, js);
       const double w2 = t.stiffness * (1.0 / reflected + 1.0 / jl);
       if (std::sqrt(w2) * dt > 0.5)
         fail(where + "transmission.stiffness too high for the step: raise substeps");
@@ -696,14 +704,7 @@ void Plant::set_axis_faults(std::size_t axis, const AxisFaults& f) {
   if (f.load_scale != a.faults.load_scale) {
     if (a.two_mass) {  // the explicit coupling spring must stay stable with the lighter load (see build)
       const TransmissionSpec& t = a.spec.transmission;
-      double jl = a.load_own.mass * f.load_scale;
-      if (j.spec.type == JointType::hinge) {
-        const auto& ax = j.spec.axis;
-        const double n = std::hypot(ax[0], ax[1], ax[2]);
-        jl = 0;
-        for (int r = 0; r < 3; ++r)
-          for (int k = 0; k < 3; ++k) jl += ax[r] / n * a.load_own.I[r * 4 + k] * f.load_scale * ax[k] / n;
-      }
+      const double jl = load_along(a.load_own, j.spec) * f.load_scale;
       const double reflected = a.spec.motor.rotor_inertia_kgm2 / (a.r * a.r);
       if (std::sqrt(t.stiffness * (1.0 / reflected + 1.0 / jl)) * p.dt > 0.5)
         fail(where + "load_scale makes the transmission too stiff for the step: raise substeps");
