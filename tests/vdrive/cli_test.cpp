@@ -109,6 +109,12 @@ TEST(Cli, IfaceAndTapExcludeEachOther) {
   expect_one_error_line(r, "--tap");
 }
 
+TEST(Cli, RxRingIsForRawSocketsNotTaps) {
+  const auto r = vdrive({"run", "--tap", "vdt0", "--rx-ring", "--drive", "a6b"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--rx-ring");
+}
+
 TEST(Cli, RunNeedsAnInterfaceOrATap) {
   const auto r = vdrive({"run", "--drive", "a6b"});
   EXPECT_EQ(r.exit_code, 2);

@@ -28,20 +28,23 @@ std::vector<std::uint8_t> receive_one(Link& link, Nanos timeout = 500 * kMs) {
   return {buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(n)};
 }
 
-class RawSocketLinkTest : public ::testing::Test {
+// Every case runs twice: frames by recvfrom(), and from the PACKET_RX_RING (Options::rx_ring).
+class RawSocketLinkTest : public ::testing::TestWithParam<bool> {
 protected:
   void SetUp() override {
     if (!test::running_as_root()) GTEST_SKIP() << "needs root (veth, raw sockets)";
     veth_ = std::make_unique<test::VethPair>();
     ASSERT_TRUE(veth_->ok()) << "could not create a veth pair";
-    a_ = std::make_unique<RawSocketLink>(veth_->a());
-    b_ = std::make_unique<RawSocketLink>(veth_->b());
+    RawSocketLink::Options options;
+    options.rx_ring = GetParam();
+    a_ = std::make_unique<RawSocketLink>(veth_->a(), options);
+    b_ = std::make_unique<RawSocketLink>(veth_->b(), options);
   }
   std::unique_ptr<test::VethPair> veth_;
   std::unique_ptr<RawSocketLink> a_, b_;
 };
 
-TEST_F(RawSocketLinkTest, EtherCatFrameCrossesTheLinkUnchanged) {
+TEST_P(RawSocketLinkTest, EtherCatFrameCrossesTheLinkUnchanged) {
   auto frame = ethercat_frame(0x07 /*BRD*/, 0, 0x0000, 2);
   frame.resize(60, 0);  // a padded minimum-size frame, as a NIC would send it
   frame[20] = 0xAB;
@@ -49,13 +52,13 @@ TEST_F(RawSocketLinkTest, EtherCatFrameCrossesTheLinkUnchanged) {
   EXPECT_EQ(receive_one(*b_), frame);
 }
 
-TEST_F(RawSocketLinkTest, RepliesFlowTheOtherWayToo) {
+TEST_P(RawSocketLinkTest, RepliesFlowTheOtherWayToo) {
   const auto frame = ethercat_frame(0x01 /*APRD*/, 0, 0x0130, 2);
   ASSERT_TRUE(b_->send(frame));
   EXPECT_EQ(receive_one(*a_), frame);
 }
 
-TEST_F(RawSocketLinkTest, ShortUnpaddedFrameIsAcceptedAtItsRealLength) {
+TEST_P(RawSocketLinkTest, ShortUnpaddedFrameIsAcceptedAtItsRealLength) {
   const auto frame = ethercat_frame(0x07, 0, 0x0000, 1);  // 14 + 2 + 10 + 1 + 2 = 29 bytes
   ASSERT_EQ(frame.size(), 29u);
   ASSERT_TRUE(a_->send(frame));
@@ -64,7 +67,7 @@ TEST_F(RawSocketLinkTest, ShortUnpaddedFrameIsAcceptedAtItsRealLength) {
   EXPECT_EQ(got, frame);
 }
 
-TEST_F(RawSocketLinkTest, NonEtherCatFrameIsNotDelivered) {
+TEST_P(RawSocketLinkTest, NonEtherCatFrameIsNotDelivered) {
   const auto ipv4 = ethernet_frame(0x0800, std::vector<std::uint8_t>(46, 0x45));
   ASSERT_TRUE(a_->send(ipv4));
   EXPECT_TRUE(receive_one(*b_, 100 * kMs).empty());
@@ -74,7 +77,7 @@ TEST_F(RawSocketLinkTest, NonEtherCatFrameIsNotDelivered) {
   EXPECT_EQ(receive_one(*b_), ecat);
 }
 
-TEST_F(RawSocketLinkTest, AnyDestinationAndSourceMacIsAccepted) {
+TEST_P(RawSocketLinkTest, AnyDestinationAndSourceMacIsAccepted) {
   auto frame = ethercat_frame(0x07, 0, 0, 2);
   // Unicast to a MAC that is not b's: only promiscuous membership lets it in.
   const std::uint8_t dst[6] = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55};
@@ -85,7 +88,7 @@ TEST_F(RawSocketLinkTest, AnyDestinationAndSourceMacIsAccepted) {
   EXPECT_EQ(receive_one(*b_), frame);
 }
 
-TEST_F(RawSocketLinkTest, FramesOnOtherInterfacesAreNotReceived) {
+TEST_P(RawSocketLinkTest, FramesOnOtherInterfacesAreNotReceived) {
   test::VethPair other;
   ASSERT_TRUE(other.ok());
   RawSocketLink other_a(other.a());
@@ -93,7 +96,7 @@ TEST_F(RawSocketLinkTest, FramesOnOtherInterfacesAreNotReceived) {
   EXPECT_TRUE(receive_one(*b_, 100 * kMs).empty());
 }
 
-TEST_F(RawSocketLinkTest, VlanTaggedEtherCatArrivesWithoutItsTag) {
+TEST_P(RawSocketLinkTest, VlanTaggedEtherCatArrivesWithoutItsTag) {
   // Documented limitation: the kernel removes the 802.1Q tag before a socket bound to 0x88A4
   // sees the frame and does not report it there.
   const auto plain = ethercat_frame(0x07, 0, 0, 2);
@@ -104,12 +107,12 @@ TEST_F(RawSocketLinkTest, VlanTaggedEtherCatArrivesWithoutItsTag) {
   EXPECT_EQ(receive_one(*b_), plain);
 }
 
-TEST_F(RawSocketLinkTest, OwnSendsAreNotReceived) {
+TEST_P(RawSocketLinkTest, OwnSendsAreNotReceived) {
   ASSERT_TRUE(a_->send(ethercat_frame(0x07, 0, 0, 2)));
   EXPECT_TRUE(receive_one(*a_, 100 * kMs).empty());
 }
 
-TEST_F(RawSocketLinkTest, FrameLongerThanTheBufferIsDiscardedNotTruncated) {
+TEST_P(RawSocketLinkTest, FrameLongerThanTheBufferIsDiscardedNotTruncated) {
   const auto big = ethercat_frame(0x07, 0, 0, 200);
   ASSERT_TRUE(a_->send(big));
   std::array<std::uint8_t, 64> small{};
@@ -117,7 +120,7 @@ TEST_F(RawSocketLinkTest, FrameLongerThanTheBufferIsDiscardedNotTruncated) {
   EXPECT_EQ(b_->discarded(), 1u);
 }
 
-TEST_F(RawSocketLinkTest, ReceiveWaitsForTheTimeoutWhenNothingArrives) {
+TEST_P(RawSocketLinkTest, ReceiveWaitsForTheTimeoutWhenNothingArrives) {
   std::array<std::uint8_t, kMaxFrame> buf{};
   const auto start = std::chrono::steady_clock::now();
   EXPECT_EQ(b_->receive(buf, 50 * kMs), 0u);
@@ -127,13 +130,13 @@ TEST_F(RawSocketLinkTest, ReceiveWaitsForTheTimeoutWhenNothingArrives) {
   EXPECT_EQ(b_->receive(buf, 0), 0u);  // a zero timeout only looks
 }
 
-TEST_F(RawSocketLinkTest, HasAPollableDescriptor) {
+TEST_P(RawSocketLinkTest, HasAPollableDescriptor) {
   EXPECT_GE(a_->fd(), 0);
   EXPECT_EQ(a_->interface_name(), veth_->a());
   EXPECT_GT(a_->interface_index(), 0);
 }
 
-TEST_F(RawSocketLinkTest, InterfaceGoingDownAndUpKeepsTheLink) {
+TEST_P(RawSocketLinkTest, InterfaceGoingDownAndUpKeepsTheLink) {
   ASSERT_TRUE(test::run_quiet("ip link set " + veth_->b() + " down"));
   EXPECT_TRUE(receive_one(*b_, 50 * kMs).empty());
   ASSERT_TRUE(test::run_quiet("ip link set " + veth_->b() + " up"));
@@ -145,7 +148,7 @@ TEST_F(RawSocketLinkTest, InterfaceGoingDownAndUpKeepsTheLink) {
   EXPECT_EQ(receive_one(*b_), frame);
 }
 
-TEST_F(RawSocketLinkTest, RemovedInterfaceIsReportedNotServedForever) {
+TEST_P(RawSocketLinkTest, RemovedInterfaceIsReportedNotServedForever) {
   a_.reset();
   veth_.reset();  // deletes both ends
   std::array<std::uint8_t, kMaxFrame> buf{};
@@ -156,6 +159,30 @@ TEST_F(RawSocketLinkTest, RemovedInterfaceIsReportedNotServedForever) {
     EXPECT_EQ(e.kind(), LinkError::Kind::NoInterface);
     EXPECT_NE(std::string(e.what()).find("disappeared"), std::string::npos);
   }
+}
+
+INSTANTIATE_TEST_SUITE_P(ReceivePath, RawSocketLinkTest, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& p) { return p.param ? "rx_ring" : "recvfrom"; });
+
+// The ring holds 128 frames: more than that in a row, read later, all arrive in order.
+TEST_P(RawSocketLinkTest, ABurstLongerThanTheRingArrivesInOrder) {
+  constexpr int kFrames = 300;
+  std::array<std::uint8_t, kMaxFrame> buf{};
+  int received = 0;
+  for (int sent = 0; sent < kFrames; ++sent) {
+    auto frame = ethercat_frame(0x07, 0, 0, 4);
+    frame[20] = static_cast<std::uint8_t>(sent);
+    frame[21] = static_cast<std::uint8_t>(sent >> 8);
+    ASSERT_TRUE(a_->send(frame));
+    if (sent % 100 == 99) {  // read in bursts of 100: the ring wraps twice
+      for (; received <= sent; ++received) {
+        const std::size_t n = b_->receive(buf, 500 * kMs);
+        ASSERT_EQ(n, frame.size()) << "frame " << received;
+        EXPECT_EQ(buf[20] | (buf[21] << 8), received & 0xFFFF);
+      }
+    }
+  }
+  EXPECT_EQ(b_->receive(buf, 0), 0u);
 }
 
 TEST(RawSocketLinkErrors, MissingInterfaceIsNamed) {

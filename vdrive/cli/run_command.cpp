@@ -47,6 +47,7 @@ struct RunOptions {
   bool no_qdisc_bypass = false;
   int rt_priority = 0;  // 0: normal scheduling
   long busy_poll_us = 0;  // raw socket: spin before sleeping (RawSocketLink::Options::busy_poll)
+  bool rx_ring = false;   // raw socket: frames from a PACKET_RX_RING (RawSocketLink::Options::rx_ring)
   int cpu = -1;           // pin the serving thread; -1: no pinning
   std::vector<std::string> plants;  // "N:FILE": slave N (cable order, from 0) moves the plant in FILE
   std::string control;              // runtime control socket; empty: default_control_path()
@@ -156,6 +157,7 @@ std::unique_ptr<link::Link> open_link(const RunOptions& o) {
     link::RawSocketLink::Options options;
     options.qdisc_bypass = !o.no_qdisc_bypass;
     options.busy_poll = static_cast<Nanos>(o.busy_poll_us) * 1000;
+    options.rx_ring = o.rx_ring;
     return std::make_unique<link::RawSocketLink>(o.iface, options);
   } catch (const link::LinkError& e) {
     throw CliError(exit_code_for(e.kind()), e.what());
@@ -268,6 +270,9 @@ void add_run_command(CLI::App& app) {
                   "Raw socket: spin up to US microseconds for the next frame before sleeping (default 0: sleep at once)")
       ->check(CLI::Range(0L, 1'000'000L));
   cmd->add_option("--cpu", o->cpu, "Pin the serving thread to CPU N (default: not pinned)")->check(CLI::Range(0, 1023));
+  cmd->add_flag("--rx-ring", o->rx_ring,
+                "Raw socket: take frames from a ring shared with the kernel (PACKET_RX_RING) instead of recvfrom")
+      ->excludes(tap);
   cmd->add_flag("--no-qdisc-bypass", o->no_qdisc_bypass,
                 "Send through the qdisc layer (so tc sees replies); default bypasses it");
   cmd->callback([o] {

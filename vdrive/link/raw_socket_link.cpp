@@ -4,11 +4,13 @@
 #include <linux/if_ether.h>
 #include <linux/if_packet.h>
 #include <net/if.h>
+#include <sys/mman.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstring>
 #include <ctime>
 
 #include "vdrive/link/net_interface.hpp"
@@ -29,6 +31,7 @@ RawSocketLink::RawSocketLink(const std::string& interface_name, Options options)
   if (fd_ < 0) throw net::error_from_errno("socket(AF_PACKET)", name_, errno);
 
   try {
+    if (options.rx_ring) map_rx_ring();  // before bind: no frame can land outside the ring
     sockaddr_ll addr{};
     addr.sll_family = AF_PACKET;
     addr.sll_protocol = htons(kEtherTypeEtherCat);
@@ -62,13 +65,63 @@ RawSocketLink::RawSocketLink(const std::string& interface_name, Options options)
       (void)::setsockopt(fd_, SOL_SOCKET, SO_BUSY_POLL, &us, sizeof us);
     }
   } catch (...) {
+    if (ring_ != nullptr) ::munmap(ring_, ring_bytes_);
     ::close(fd_);
     throw;
   }
 }
 
 RawSocketLink::~RawSocketLink() {
+  if (ring_ != nullptr) ::munmap(ring_, ring_bytes_);
   if (fd_ >= 0) ::close(fd_);
+}
+
+void RawSocketLink::map_rx_ring() {
+  int version = TPACKET_V2;
+  if (::setsockopt(fd_, SOL_PACKET, PACKET_VERSION, &version, sizeof version) < 0) {
+    throw net::error_from_errno("PACKET_VERSION", name_, errno);
+  }
+  // Slots of 2 KiB hold a full-size Ethernet frame behind the ring's header; two per page.
+  constexpr unsigned kSlotBytes = 2048, kBlockBytes = 4096, kBlocks = 64;
+  tpacket_req req{};
+  req.tp_block_size = kBlockBytes;
+  req.tp_block_nr = kBlocks;
+  req.tp_frame_size = kSlotBytes;
+  req.tp_frame_nr = kBlocks * (kBlockBytes / kSlotBytes);
+  if (::setsockopt(fd_, SOL_PACKET, PACKET_RX_RING, &req, sizeof req) < 0) {
+    throw net::error_from_errno("PACKET_RX_RING", name_, errno);
+  }
+  const std::size_t bytes = std::size_t{kBlockBytes} * kBlocks;
+  void* ring = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd_, 0);
+  if (ring == MAP_FAILED) throw net::error_from_errno("mmap(PACKET_RX_RING)", name_, errno);
+  ring_ = static_cast<std::uint8_t*>(ring);
+  ring_bytes_ = bytes;
+  slot_bytes_ = kSlotBytes;
+  slots_ = req.tp_frame_nr;
+}
+
+int RawSocketLink::take_from_ring(std::span<std::uint8_t> buf, std::size_t& len) {
+  auto* slot = ring_ + next_slot_ * slot_bytes_;
+  auto* hdr = reinterpret_cast<tpacket2_hdr*>(slot);
+  // The kernel hands the slot over with a release store of its status.
+  if ((__atomic_load_n(&hdr->tp_status, __ATOMIC_ACQUIRE) & TP_STATUS_USER) == 0) return 0;
+  const auto* from = reinterpret_cast<const sockaddr_ll*>(slot + TPACKET_ALIGN(sizeof(tpacket2_hdr)));
+  const std::uint8_t* data = slot + hdr->tp_mac;
+  const std::size_t n = hdr->tp_len, captured = hdr->tp_snaplen;
+  int result = -1;
+  if (from->sll_pkttype != PACKET_OUTGOING && from->sll_ifindex == ifindex_) {
+    // Longer than the caller's buffer, or than a slot holds (captured < n): discarded, not cut.
+    if (n > buf.size() || captured < n || !net::is_ethercat(std::span<const std::uint8_t>(data, captured))) {
+      ++discarded_;
+    } else {
+      std::memcpy(buf.data(), data, n);
+      len = n;
+      result = 1;
+    }
+  }
+  __atomic_store_n(&hdr->tp_status, TP_STATUS_KERNEL, __ATOMIC_RELEASE);
+  next_slot_ = (next_slot_ + 1) % slots_;
+  return result;
 }
 
 namespace {
@@ -81,6 +134,21 @@ Nanos monotonic_now() {
 
 }  // namespace
 
+// What receive() does with a failed recvfrom(): true for "nothing waiting" (go on waiting).
+// Throws once the interface has been removed.
+bool RawSocketLink::nothing_waiting(int err) const {
+  if (err == ENETDOWN) {
+    // Reported once when the interface goes down (it may come back: a cable pulled) or is
+    // removed (it never comes back: this socket is dead, e.g. a USB NIC unplugged).
+    if (::if_nametoindex(name_.c_str()) != static_cast<unsigned>(ifindex_)) {
+      throw LinkError(LinkError::Kind::NoInterface, "interface '" + name_ + "' disappeared");
+    }
+    return false;
+  }
+  // Anything else returns (EINTR too: the caller looks at its stop flag).
+  return err == EAGAIN || err == EWOULDBLOCK;
+}
+
 std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
   const net::ReceiveDeadline deadline(timeout);
   // The spin ends at the busy-poll window or the caller's timeout, whichever is first; 0: none.
@@ -89,37 +157,42 @@ std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
     const Nanos window = timeout > 0 ? std::min(busy_poll_, timeout) : busy_poll_;
     spin_until = monotonic_now() + window;
   }
+  bool woken = false;  // ring: the last wait ended before its time
   for (;;) {
-    sockaddr_ll from{};
-    socklen_t from_len = sizeof from;
-    // MSG_TRUNC: the return value is the frame's real length, so an oversize frame is detected
-    // and discarded rather than passed on cut short.
-    ssize_t n = ::recvfrom(fd_, buf.data(), buf.size(), MSG_TRUNC | MSG_DONTWAIT,
-                           reinterpret_cast<sockaddr*>(&from), &from_len);
-    if (n >= 0) {
-      if (from.sll_pkttype == PACKET_OUTGOING || from.sll_ifindex != ifindex_) continue;
-      const auto len = static_cast<std::size_t>(n);
-      if (len > buf.size() || !net::is_ethercat(buf.first(len))) {
-        ++discarded_;
-        continue;
+    if (ring_ != nullptr) {
+      std::size_t len = 0;
+      const int taken = take_from_ring(buf, len);
+      if (taken > 0) return len;
+      if (taken < 0) continue;
+      if (woken) {  // readable but the ring is empty: the socket has an error to report
+        woken = false;
+        std::uint8_t probe = 0;
+        if (::recv(fd_, &probe, 1, MSG_DONTWAIT) < 0 && !nothing_waiting(errno)) return 0;
       }
-      return len;
-    }
-    if (errno == EINTR) return 0;  // let the caller look at its stop flag
-    if (errno == ENETDOWN) {
-      // Reported once when the interface goes down (it may come back: a cable pulled) or is
-      // removed (it never comes back: this socket is dead, e.g. a USB NIC unplugged).
-      if (::if_nametoindex(name_.c_str()) != static_cast<unsigned>(ifindex_)) {
-        throw LinkError(LinkError::Kind::NoInterface, "interface '" + name_ + "' disappeared");
+    } else {
+      sockaddr_ll from{};
+      socklen_t from_len = sizeof from;
+      // MSG_TRUNC: the return value is the frame's real length, so an oversize frame is detected
+      // and discarded rather than passed on cut short.
+      ssize_t n = ::recvfrom(fd_, buf.data(), buf.size(), MSG_TRUNC | MSG_DONTWAIT,
+                             reinterpret_cast<sockaddr*>(&from), &from_len);
+      if (n >= 0) {
+        if (from.sll_pkttype == PACKET_OUTGOING || from.sll_ifindex != ifindex_) continue;
+        const auto len = static_cast<std::size_t>(n);
+        if (len > buf.size() || !net::is_ethercat(buf.first(len))) {
+          ++discarded_;
+          continue;
+        }
+        return len;
       }
-      return 0;
+      if (!nothing_waiting(errno)) return 0;
     }
-    if (errno != EAGAIN && errno != EWOULDBLOCK) return 0;
     if (spin_until != 0) {
       if (monotonic_now() < spin_until) continue;
       spin_until = 0;  // the window is over: sleep for the rest of the timeout
     }
     if (!deadline.wait(fd_)) return 0;
+    woken = true;
   }
 }
 

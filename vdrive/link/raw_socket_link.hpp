@@ -11,7 +11,8 @@
 // - Frames shorter than the 60-byte Ethernet minimum (veth does not pad) are accepted and
 //   returned at their real length; send() writes a frame exactly as given.
 // - No allocation after construction; receive() copies into the caller's buffer and waits with
-//   ppoll(), so a timeout has nanosecond resolution; optionally it spins first (Options::busy_poll).
+//   ppoll(), so a timeout has nanosecond resolution; optionally it spins first (Options::busy_poll)
+//   and takes frames from a ring shared with the kernel instead of recvfrom() (Options::rx_ring).
 // Opening needs root or CAP_NET_RAW; failures throw LinkError naming the interface.
 #include <cstdint>
 #include <string>
@@ -34,6 +35,11 @@ public:
     // SO_BUSY_POLL to the same time where the driver supports NAPI busy polling (real NICs; veth
     // does not), best effort.
     Nanos busy_poll = 0;
+    // PACKET_RX_RING (TPACKET_V2, 128 slots of 2 KiB, mapped once at construction): the kernel
+    // writes each frame into a ring slot, and receive() takes it from there without a system call
+    // (recvfrom is then only asked for the socket's error after a wake-up with an empty ring).
+    // A frame is still copied once, into the caller's buffer.
+    bool rx_ring = false;
   };
 
   // Throws LinkError: NoInterface ("no interface 'X'"), NotPermitted, InterfaceDown, BadName,
@@ -62,6 +68,18 @@ private:
   int fd_ = -1;
   std::uint64_t discarded_ = 0;
   Nanos busy_poll_ = 0;
+  // The RX ring (Options::rx_ring): mapped memory, its slot size and count, the next slot to read.
+  std::uint8_t* ring_ = nullptr;
+  std::size_t ring_bytes_ = 0;
+  std::size_t slot_bytes_ = 0;
+  std::size_t slots_ = 0;
+  std::size_t next_slot_ = 0;
+
+  void map_rx_ring();
+  // The frame in the next ring slot, if the kernel has filled it: 1 = delivered into `buf`
+  // (length in `len`), 0 = the slot is empty, -1 = a frame was skipped (the slot is returned).
+  int take_from_ring(std::span<std::uint8_t> buf, std::size_t& len);
+  bool nothing_waiting(int err) const;
 };
 
 }  // namespace vdrive::link
