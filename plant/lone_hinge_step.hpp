@@ -2,7 +2,7 @@
 // The ODE step (dWorldStep) of a lone rigid body on a hinge to the world, in closed form.
 //
 // Every drive's default plant is one such body: its own load inertia on a hinge through its centre
-// of mass, about a principal axis. ODE spends ~2.5 us per step on it (island search, a 6-row LCP
+// of mass, about a principal axis. ODE spends about 2 us per step on it (island search, a 6-row LCP
 // for five locked freedoms and the friction motor, quaternion update); its result reduces to:
 //   - the velocity step, semi-implicit Euler: v_free = v + h * torque / J;
 //   - the friction motor (target speed 0, force limit `dry`) as the LCP's one bounded row:
@@ -11,7 +11,7 @@
 //     the body by 2 atan(v h / 2), not by v h.
 // The locked freedoms carry no load (no gravity torque about the centre, no gyroscopic torque about
 // a principal axis) and ODE's constraint-force mixing (1e-10) changes lambda by ~1e-10 relative, so
-// the two agree to rounding (tests/plant/closed_form_axis_test.cpp steps both side by side).
+// the two agree to rounding (tests/plant/closed_form_hinge_test.cpp steps both side by side).
 #include <algorithm>
 #include <cmath>
 
