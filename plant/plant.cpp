@@ -742,10 +742,8 @@ double Plant::energy() const {
   const double half = 0.5 * p.dt;
   for (const Impl::Joint& j : p.joints)
     if (j.closed) e += 0.5 * j.lone_inertia * j.vel * j.vel;  // its ODE body is stale, and at rest in place
-  for (std::size_t n = 0; n < p.bodies.size(); ++n) {
-    const Impl::Body& b = p.bodies[n];
-    const bool closed = std::any_of(p.joints.begin(), p.joints.end(),
-                                    [&](const Impl::Joint& j) { return j.closed && j.child == static_cast<int>(n); });
+  for (const Impl::Body& b : p.bodies) {
+    const bool closed = !dBodyIsEnabled(b.id);  // only the closed form disables a body
     if (!closed) e += kinetic(b.id);
     const dReal* x = dBodyGetPosition(b.id);
     const dReal* v = dBodyGetLinearVel(b.id);

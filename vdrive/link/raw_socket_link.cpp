@@ -106,18 +106,12 @@ int RawSocketLink::take_from_ring(std::span<std::uint8_t> buf, std::size_t& len)
   // The kernel hands the slot over with a release store of its status.
   if ((__atomic_load_n(&hdr->tp_status, __ATOMIC_ACQUIRE) & TP_STATUS_USER) == 0) return 0;
   const auto* from = reinterpret_cast<const sockaddr_ll*>(slot + TPACKET_ALIGN(sizeof(tpacket2_hdr)));
-  const std::uint8_t* data = slot + hdr->tp_mac;
-  const std::size_t n = hdr->tp_len, captured = hdr->tp_snaplen;
+  const std::span<const std::uint8_t> captured(slot + hdr->tp_mac, hdr->tp_snaplen);  // a slot may cut it
   int result = -1;
-  if (from->sll_pkttype != PACKET_OUTGOING && from->sll_ifindex == ifindex_) {
-    // Longer than the caller's buffer, or than a slot holds (captured < n): discarded, not cut.
-    if (n > buf.size() || captured < n || !net::is_ethercat(std::span<const std::uint8_t>(data, captured))) {
-      ++discarded_;
-    } else {
-      std::memcpy(buf.data(), data, n);
-      len = n;
-      result = 1;
-    }
+  if (keep(*from, captured, hdr->tp_len, buf.size())) {
+    std::memcpy(buf.data(), captured.data(), captured.size());
+    len = captured.size();
+    result = 1;
   }
   __atomic_store_n(&hdr->tp_status, TP_STATUS_KERNEL, __ATOMIC_RELEASE);
   next_slot_ = (next_slot_ + 1) % slots_;
@@ -133,6 +127,18 @@ Nanos monotonic_now() {
 }
 
 }  // namespace
+
+// Skips our own sends and other interfaces' frames; counts as discarded (not cut short) a frame
+// longer than `capacity` or than what was captured of it, or one that is not EtherCAT.
+bool RawSocketLink::keep(const sockaddr_ll& from, std::span<const std::uint8_t> captured, std::size_t length,
+                         std::size_t capacity) {
+  if (from.sll_pkttype == PACKET_OUTGOING || from.sll_ifindex != ifindex_) return false;
+  if (length > capacity || captured.size() < length || !net::is_ethercat(captured)) {
+    ++discarded_;
+    return false;
+  }
+  return true;
+}
 
 // What receive() does with a failed recvfrom(): true for "nothing waiting" (go on waiting).
 // Throws once the interface has been removed.
@@ -177,12 +183,8 @@ std::size_t RawSocketLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
       ssize_t n = ::recvfrom(fd_, buf.data(), buf.size(), MSG_TRUNC | MSG_DONTWAIT,
                              reinterpret_cast<sockaddr*>(&from), &from_len);
       if (n >= 0) {
-        if (from.sll_pkttype == PACKET_OUTGOING || from.sll_ifindex != ifindex_) continue;
         const auto len = static_cast<std::size_t>(n);
-        if (len > buf.size() || !net::is_ethercat(buf.first(len))) {
-          ++discarded_;
-          continue;
-        }
+        if (!keep(from, buf.first(std::min(len, buf.size())), len, buf.size())) continue;
         return len;
       }
       if (!nothing_waiting(errno)) return 0;

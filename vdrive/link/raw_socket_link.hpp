@@ -20,6 +20,8 @@
 #include "vdrive/link/link.hpp"
 #include "vdrive/link/link_error.hpp"
 
+struct sockaddr_ll;
+
 namespace vdrive::link {
 
 class RawSocketLink final : public Link {
@@ -79,6 +81,8 @@ private:
   // The frame in the next ring slot, if the kernel has filled it: 1 = delivered into `buf`
   // (length in `len`), 0 = the slot is empty, -1 = a frame was skipped (the slot is returned).
   int take_from_ring(std::span<std::uint8_t> buf, std::size_t& len);
+  bool keep(const sockaddr_ll& from, std::span<const std::uint8_t> captured, std::size_t length,
+            std::size_t capacity);
   bool nothing_waiting(int err) const;
 };
 
