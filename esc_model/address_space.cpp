@@ -74,6 +74,20 @@ int Esc::Impl::sm_covering(std::uint16_t address) const {
   return -1;
 }
 
+// Bytes from `a` on that go to the same place as `a`: SM n's window (n = sm_covering(a)) or plain
+// RAM (n < 0), up to `limit`. A lower-numbered SM wins an overlap, as sm_covering gives per byte,
+// so a run also stops where the window of any SM before n begins.
+std::uint32_t Esc::Impl::run_end(std::uint16_t a, int n, std::uint32_t limit) const {
+  std::uint32_t end = n < 0 ? limit : std::min(limit, sms[static_cast<std::size_t>(n)].end());
+  const int before = n < 0 ? sm_count : n;
+  for (int m = 0; m < before; ++m) {
+    const SyncManager& sm = sms[static_cast<std::size_t>(m)];
+    if (!sm.enabled() || sm.end() <= a) continue;
+    if (sm.start() > a) end = std::min<std::uint32_t>(end, sm.start());
+  }
+  return end;
+}
+
 bool Esc::Impl::read_region(Side side, std::uint16_t a, std::span<std::uint8_t> out) {
   const std::uint32_t end = a + static_cast<std::uint32_t>(out.size());
   if (a >= reg::kSiiFirst && a < reg::kSiiEnd) {
@@ -96,20 +110,19 @@ bool Esc::Impl::read_region(Side side, std::uint16_t a, std::span<std::uint8_t> 
   }
   bool any = false;
   std::uint32_t touched = 0;  // SMs whose status and events are refreshed once, after the access
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const auto at = static_cast<std::uint16_t>(a + i);
-    const int n = sm_covering(at);
+  for (std::uint32_t at = a; at < end;) {
+    const auto at16 = static_cast<std::uint16_t>(at);
+    const int n = sm_covering(at16);
+    const std::uint32_t stop = run_end(at16, n, end);
+    const auto part = out.subspan(at - a, stop - at);
     if (n < 0) {
-      out[i] = mem[at];
+      std::copy_n(mem.begin() + at, part.size(), part.begin());
       any = true;
-      continue;
+    } else {
+      any = sms[static_cast<std::size_t>(n)].read(side, at16, part, ram()).ok || any;
+      touched |= 1u << n;
     }
-    std::uint8_t v = 0;
-    if (sms[static_cast<std::size_t>(n)].read(side, at, v, ram()).ok) {
-      out[i] = v;
-      any = true;
-    }
-    touched |= 1u << n;
+    at = stop;
   }
   refresh_sms(touched);
   return any;
@@ -152,19 +165,24 @@ bool Esc::Impl::write_region(Side side, std::uint16_t a, std::span<const std::ui
   if (a >= ram_end) return true;
   bool any = false;
   std::uint32_t touched = 0;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    const auto at = static_cast<std::uint16_t>(a + i);
-    const int n = sm_covering(at);
+  for (std::uint32_t at = a; at < end;) {
+    const auto at16 = static_cast<std::uint16_t>(at);
+    const int n = sm_covering(at16);
+    const std::uint32_t stop = run_end(at16, n, end);
+    const auto part = in.subspan(at - a, stop - at);
     if (n < 0) {
-      mem[at] = static_cast<std::uint8_t>((mem[at] & ~mask) | (in[i] & mask));
+      for (std::size_t i = 0; i < part.size(); ++i) {
+        mem[at + i] = static_cast<std::uint8_t>((mem[at + i] & ~mask) | (part[i] & mask));
+      }
       any = true;
-      continue;
+    } else {
+      SyncManager& sm = sms[static_cast<std::size_t>(n)];
+      const SyncManager::Result r = sm.write(side, at16, part, mask, ram());
+      any = any || r.ok;
+      if (r.completed && side == Side::Ecat && sm.watchdog_trigger()) trigger_pd_watchdog();
+      touched |= 1u << n;
     }
-    SyncManager& sm = sms[static_cast<std::size_t>(n)];
-    const SyncManager::Result r = sm.write(side, at, in[i], mask, ram());
-    any = any || r.ok;
-    if (r.completed && side == Side::Ecat && sm.watchdog_trigger()) trigger_pd_watchdog();
-    touched |= 1u << n;
+    at = stop;
   }
   refresh_sms(touched);
   return any;

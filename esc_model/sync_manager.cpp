@@ -1,5 +1,7 @@
 #include "esc_model/sync_manager.hpp"
 
+#include <algorithm>
+
 #include "esc_model/registers.hpp"
 
 namespace vdrive::esc {
@@ -54,13 +56,38 @@ bool SyncManager::event_for(Side side) const {
   return side == writer_ ? irq_read_ : irq_write_;
 }
 
-SyncManager::Result SyncManager::read(Side side, std::uint16_t address, std::uint8_t& out,
+namespace {
+// Copies what lies in backed memory; bytes beyond it read as 0 (reads) or are dropped (writes).
+void copy_out(std::span<const std::uint8_t> memory, std::uint32_t at, std::span<std::uint8_t> out) {
+  const std::size_t backed = at < memory.size() ? std::min<std::size_t>(out.size(), memory.size() - at) : 0;
+  if (backed != 0) std::copy_n(memory.begin() + at, backed, out.begin());
+  std::fill(out.begin() + static_cast<std::ptrdiff_t>(backed), out.end(), std::uint8_t{0});
+}
+
+void copy_in(std::span<std::uint8_t> memory, std::uint32_t at, std::span<const std::uint8_t> in,
+             std::uint8_t mask) {
+  const std::size_t backed = at < memory.size() ? std::min<std::size_t>(in.size(), memory.size() - at) : 0;
+  if (mask == 0xFF) {
+    if (backed != 0) std::copy_n(in.begin(), backed, memory.begin() + at);
+    return;
+  }
+  for (std::size_t i = 0; i < backed; ++i) {
+    memory[at + i] = static_cast<std::uint8_t>((memory[at + i] & ~mask) | (in[i] & mask));
+  }
+}
+}  // namespace
+
+// A run is what the same bytes accessed one by one in ascending order give: the buffer can only
+// open at the run's first byte (a later byte is never the window's first) and only close at its
+// last (the window's last byte ends every run that holds it), so the state changes at the ends.
+SyncManager::Result SyncManager::read(Side side, std::uint16_t address, std::span<std::uint8_t> out,
                                       std::span<const std::uint8_t> memory) {
+  if (out.empty()) return {};
   const bool first = address == start_;
-  const bool last = address - start_ == length_ - 1;
+  const bool last = address - start_ + out.size() == length_;
   if (mailbox_) {
     if (side == writer_) {
-      out = address < memory.size() ? memory[address] : 0;
+      copy_out(memory, address, out);
       return {true, false};
     }
     if (!full_) return {};  // empty read mailbox: no data, no working counter
@@ -68,7 +95,7 @@ SyncManager::Result SyncManager::read(Side side, std::uint16_t address, std::uin
       read_open_ = true;
       irq_write_ = false;
     }
-    out = address < memory.size() ? memory[address] : 0;
+    copy_out(memory, address, out);
     if (last) {
       full_ = false;
       read_open_ = false;
@@ -78,8 +105,7 @@ SyncManager::Result SyncManager::read(Side side, std::uint16_t address, std::uin
   }
   if (side == writer_) {
     const int b = write_open_ ? write_buffer_ : (newest_ == kNone ? 0 : newest_);
-    const std::uint32_t at = buffer_address(b, address);
-    out = at < memory.size() ? memory[at] : 0;
+    copy_out(memory, buffer_address(b, address), out);
     return {true, false};
   }
   if (first || !read_open_) {
@@ -87,8 +113,7 @@ SyncManager::Result SyncManager::read(Side side, std::uint16_t address, std::uin
     if (newest_ != kNone) read_buffer_ = newest_;
     irq_write_ = false;
   }
-  const std::uint32_t at = buffer_address(read_buffer_, address);
-  out = at < memory.size() ? memory[at] : 0;
+  copy_out(memory, buffer_address(read_buffer_, address), out);
   if (last) {
     read_open_ = false;
     irq_read_ = true;
@@ -96,11 +121,12 @@ SyncManager::Result SyncManager::read(Side side, std::uint16_t address, std::uin
   return {true, false};
 }
 
-SyncManager::Result SyncManager::write(Side side, std::uint16_t address, std::uint8_t value,
-                                       std::uint8_t mask, std::span<std::uint8_t> memory) {
-  if (side != writer_) return {};
+SyncManager::Result SyncManager::write(Side side, std::uint16_t address,
+                                       std::span<const std::uint8_t> in, std::uint8_t mask,
+                                       std::span<std::uint8_t> memory) {
+  if (side != writer_ || in.empty()) return {};
   const bool first = address == start_;
-  const bool last = address - start_ == length_ - 1;
+  const bool last = address - start_ + in.size() == length_;
   std::uint32_t at = address;
   if (mailbox_) {
     if (full_) return {};  // full mailbox: write rejected, no working counter
@@ -118,9 +144,7 @@ SyncManager::Result SyncManager::write(Side side, std::uint16_t address, std::ui
     }
     at = buffer_address(write_buffer_, address);
   }
-  if (at < memory.size()) {
-    memory[at] = static_cast<std::uint8_t>((memory[at] & ~mask) | (value & mask));
-  }
+  copy_in(memory, at, in, mask);
   if (!last) return {true, false};
   write_open_ = false;
   irq_write_ = true;

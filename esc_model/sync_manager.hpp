@@ -45,11 +45,16 @@ public:
     bool ok = false;         // access performed (counts for the working counter)
     bool completed = false;  // the access wrote the last byte of the buffer
   };
-  // `memory` is the backed memory (process RAM ends at memory.size()); `address` is covered.
-  Result read(Side side, std::uint16_t address, std::uint8_t& out,
+  // A run of bytes [address, address + size) inside the window, as the same bytes accessed one by
+  // one in ascending order: every byte is performed or none is. `memory` is the backed memory
+  // (process RAM ends at memory.size()).
+  Result read(Side side, std::uint16_t address, std::span<std::uint8_t> out,
               std::span<const std::uint8_t> memory);
-  Result write(Side side, std::uint16_t address, std::uint8_t value, std::uint8_t mask,
-               std::span<std::uint8_t> memory);
+  Result write(Side side, std::uint16_t address, std::span<const std::uint8_t> in,
+               std::uint8_t mask, std::span<std::uint8_t> memory);
+  // The window [start, end).
+  std::uint16_t start() const { return start_; }
+  std::uint32_t end() const { return std::uint32_t{start_} + length_; }
 
   // Status register (0x0805) as the silicon shows it.
   std::uint8_t status() const;
