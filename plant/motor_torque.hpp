@@ -14,9 +14,11 @@
 
 namespace vdrive::plant {
 
-// Current after one step of length dt from `current` towards `command` (first-order lag).
-inline double current_loop_step(double current, double command, double bandwidth_hz, double dt) {
-  const double k = 1.0 - std::exp(-2.0 * M_PI * bandwidth_hz * dt);
+// Current after one step of length dt from `current` towards `command` (first-order lag); `exp`
+// is the caller's exp, e.g. a CachedExp (common/cached_exp.hpp).
+template <typename Exp>
+double current_loop_step(double current, double command, double bandwidth_hz, double dt, Exp&& exp) {
+  const double k = 1.0 - exp(-2.0 * M_PI * bandwidth_hz * dt);
   return current + (command - current) * k;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cached_exp.hpp"
 #include "plant/friction.hpp"
 #include "plant/load_profile.hpp"
 #include "plant/lone_hinge_step.hpp"
@@ -117,6 +118,7 @@ struct Plant::Impl {
     dJointID rotor_hinge = nullptr;
     double rotor_prev_raw = 0, rotor_angle = 0, rotor_vel = 0;
     double current = 0, torque = 0, loss_j = 0;
+    CachedExp current_lag;
     ThermalNetwork thermal;
     Encoder encoder;
     AxisCommand cmd;
@@ -430,7 +432,7 @@ void Plant::Impl::substep(double t) {
     } else {
       const double demand = std::clamp(a.cmd.torque_nm, -m.peak_torque_nm, m.peak_torque_nm);
       a.current = current_loop_step(a.current, demand / m.torque_constant_nm_per_a,
-                                    m.current_bandwidth_hz, dt);
+                                    m.current_bandwidth_hz, dt, a.current_lag);
       torque = m.torque_constant_nm_per_a * a.current;
       torque *= speed_taper(torque, w, m.max_speed_rad_s);
     }

@@ -40,7 +40,7 @@ void AlarmMonitors::step(const MonitorInputs& in) {
 
   const double tau = levels.overload_time_constant_s;
   if (tau > 0.0 && in.dt_s > 0.0)
-    load_factor_ += (in.torque_ratio * in.torque_ratio - load_factor_) * (1.0 - std::exp(-in.dt_s / tau));
+    load_factor_ += (in.torque_ratio * in.torque_ratio - load_factor_) * (1.0 - overload_exp_(-in.dt_s / tau));
   const double overload_level = overload_level_.get();
   const bool overloaded = overload_level > 0.0 && load_factor_ > overload_level;
   watch(overload_, overloaded || (in.plant_faults & plant::fault::lost_steps) != 0, in.now);

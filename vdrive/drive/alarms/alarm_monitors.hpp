@@ -15,6 +15,7 @@
 // Nothing here allocates after construction.
 #include <cstdint>
 
+#include "common/cached_exp.hpp"
 #include "common/clock.hpp"
 #include "vdrive/drive/alarms/alarm_manager.hpp"
 #include "vdrive/drive/parameter_value.hpp"
@@ -55,6 +56,7 @@ private:
   AlarmManager& alarms_;
   ParameterValue following_error_level_, overspeed_level_, overload_level_;
   double load_factor_ = 0.0;
+  CachedExp overload_exp_;
   const profile::AlarmSpec* following_error_ = nullptr;
   const profile::AlarmSpec* overspeed_ = nullptr;
   const profile::AlarmSpec* overload_ = nullptr;

@@ -57,7 +57,7 @@ plant::AxisCommand ServoLoop::step(const MotorSetpoint& sp, const plant::AxisFee
   }
   last_kind_ = sp.kind;
 
-  const double k = gains_.torque_filter_s > 0.0 ? 1.0 - std::exp(-dt / gains_.torque_filter_s) : 1.0;
+  const double k = gains_.torque_filter_s > 0.0 ? 1.0 - filter_exp_(-dt / gains_.torque_filter_s) : 1.0;
   filtered_ += (demand - filtered_) * k;
   torque_ = std::clamp(filtered_, -reverse_limit, limit);
   saturated_ = demand > limit || demand < -reverse_limit;

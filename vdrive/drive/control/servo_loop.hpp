@@ -5,6 +5,7 @@
 // Changing the set-point kind is bumpless: entering the velocity loop from torque control
 // presets the integrator to the torque being delivered; so does the first step after reset(fb),
 // which starts from the torque the axis delivers (fb.torque_nm, 0 when the stage was off).
+#include "common/cached_exp.hpp"
 #include "vdrive/drive/control/control_gains.hpp"
 #include "vdrive/drive/control/control_loop.hpp"
 
@@ -27,6 +28,7 @@ private:
   double peak_torque_nm_;
   double integral_ = 0.0;   // integral of the velocity error over Ti, rad/s
   double filtered_ = 0.0;   // torque filter state, N m
+  CachedExp filter_exp_;
   double torque_ = 0.0;     // last output, N m
   bool saturated_ = false;
   Setpoint::Kind last_kind_ = Setpoint::Kind::Position;
