@@ -399,13 +399,19 @@ Nanos DcUnit::next_deadline() const {
   // Asked several times per wake-up of the loop at one `now`; the answer depends only on `now`
   // and the unit's state, so it is reused while neither changed (exact, not an approximation).
   const Nanos now = clock_.now();
-  if (now != deadline_asked_at_ || version_ != deadline_version_) {
+  // global_time_of's host-rate answer does not depend on when it is asked, so it also holds at a
+  // later `now`, until it is due.
+  const bool same_answer = now == deadline_asked_at_ || (deadline_holds_ && deadline_ > now);
+  if (version_ != deadline_version_ || !same_answer) {
     deadline_ = global_time_of(target);
     deadline_asked_at_ = now;
     deadline_version_ = version_;
+    deadline_holds_ = host_rate() && deadline_ > now && deadline_ - now < kHostRateSpan;
   }
   return deadline_;
 }
+
+bool DcUnit::host_rate() const { return drift_ppm_ == 0.0 && freq_ == 0.0 && pending_phase_ == 0.0; }
 
 Nanos DcUnit::global_time_of(std::uint64_t system) const {
   const Nanos now = clock_.now();
@@ -422,6 +428,9 @@ Nanos DcUnit::global_time_of(std::uint64_t system) const {
   // Beyond this horizon (about 146 years) nobody waits for the edge; also keeps the math finite.
   constexpr std::uint64_t kHorizon = std::uint64_t{1} << 62;
   if (system - sys0 > kHorizon) return INT64_MAX;
+  // No drift, no correction: system time is host time plus a constant. What the general path
+  // below computes is then exactly `need` ns from now, as long as `need` is exact in a double.
+  if (host_rate() && system - sys0 < static_cast<std::uint64_t>(kHostRateSpan)) return now + static_cast<Nanos>(system - sys0);
   const double need = static_cast<double>(system - sys0);
 
   // System time runs at (1 + freq) per local ns, plus the remaining phase slew while it lasts.

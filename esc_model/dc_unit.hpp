@@ -129,10 +129,17 @@ private:
   bool sync1_latched_ = false;
   bool pulses_suppressed_ = false;
 
+  // System time runs at the host clock's rate (no drift, no frequency or phase correction).
+  bool host_rate() const;
+  // global_time_of answers by integer arithmetic at host rate for edges closer than this (the
+  // general path's doubles are exact there).
+  static constexpr std::int64_t kHostRateSpan = std::int64_t{1} << 53;
+
   std::uint64_t version_ = 0;  // bumped by every call but read(), which cannot move the deadline
   mutable Nanos deadline_asked_at_ = INT64_MIN;  // next_deadline()'s last answer, for `now` and version_
   mutable std::uint64_t deadline_version_ = 0;
   mutable Nanos deadline_ = 0;
+  mutable bool deadline_holds_ = false;  // deadline_ is a host-rate answer: valid until due
 };
 
 }  // namespace vdrive::esc

@@ -292,6 +292,38 @@ TEST_F(SyncFixture, DeadlineFollowsAWriteAtTheSameInstant) {
   EXPECT_EQ(dc.next_deadline(), INT64_MAX);
 }
 
+// With no drift and no correction the deadline is exactly the first host ns at which the system
+// time reaches the edge, and next_deadline() keeps that answer as the clock moves towards it.
+TEST(DcUnit, HostRateDeadlineIsTheFirstInstantAtTheEdge) {
+  VirtualClock clock{5'000'000};
+  DcUnit dc{clock};
+  dc.set_start_offset(40'000'000'123);
+  dc.load_pulse_length(0);
+  wr(dc, 0x0920, 987'654'321, 8, clock.now());  // system time offset
+  wr(dc, 0x09A0, 125'000u, 4, clock.now());
+  wr(dc, 0x0990, dc.system_time(clock.now()) + 300'017, 8, clock.now());
+  wr(dc, 0x0981, 0x03u, 1, clock.now());
+  std::mt19937 rng(99);
+  for (int k = 0; k < 2'000; ++k) {
+    const Nanos d = dc.next_deadline();
+    const std::uint64_t edge = rd(dc, 0x0990, 8, clock.now());
+    ASSERT_EQ(dc.system_time(d), edge);
+    ASSERT_EQ(dc.system_time(d - 1), edge - 1);
+    for (int j = 0; j < 3 && clock.now() < d - 1; ++j) {
+      clock.set(clock.now() + 1 + static_cast<Nanos>(rng() % static_cast<std::uint64_t>(d - 1 - clock.now())));
+      ASSERT_EQ(dc.next_deadline(), d);
+    }
+    clock.set(d);
+    ASSERT_TRUE(dc.tick(d).sync0);
+  }
+  // A drift makes it the general path's answer again, recomputed at every instant.
+  dc.set_drift_ppm(50.0);
+  const Nanos d = dc.next_deadline();
+  const std::uint64_t edge = rd(dc, 0x0990, 8, clock.now());
+  EXPECT_GE(dc.system_time(d), edge);
+  EXPECT_LT(dc.system_time(d - 1), edge);
+}
+
 TEST_F(SyncFixture, AcknowledgeModeStatusClearsOnRead) {
   program(dc.system_time(clock.now()) + 1'000, 500'000, 0, 0x03);
   step();
