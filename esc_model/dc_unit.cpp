@@ -242,6 +242,12 @@ void DcUnit::refresh_dynamic(Nanos now, std::uint16_t offset, std::size_t len) {
 }
 
 void DcUnit::read(std::uint16_t offset, std::span<std::uint8_t> out, Nanos now) {
+  if (offset >= kSystemTime && offset + out.size() <= kSystemTime + 8u) {
+    // The system time alone (firmware reads it every control step): no other register is touched.
+    put_le(&regs_[kSystemTime], system_time(now), 8);
+    std::copy_n(&regs_[offset], out.size(), out.begin());
+    return;
+  }
   refresh_dynamic(now, offset, out.size());
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = offset + i < sizeof(regs_) ? regs_[offset + i] : 0;
   // Acknowledge mode: reading the SYNC status clears it.

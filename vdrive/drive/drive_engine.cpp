@@ -178,7 +178,7 @@ bool DriveEngine::raise_al_error(std::uint16_t al_status_code, Nanos now) {
   return false;
 }
 
-void DriveEngine::raise_cause(const std::string& code, Nanos t) {
+void DriveEngine::raise_cause(std::string_view code, Nanos t) {
   if (code.empty()) return;
   if (const profile::AlarmSpec* a = alarms_.find(code)) alarms_.raise(*a, t);
 }
@@ -325,8 +325,8 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   // Injected causes after the monitors, which reset the causes of the alarms they share.
   for (std::size_t i = 0; i < kInjectedFaultCount; ++i)
     if (injected_[i]) raise_injected(static_cast<InjectedFault>(i), t);
-  if (active_) raise_cause(std::string(active_->pending_alarm()), t);
-  if (const std::string_view a = probe_.pending_alarm(); !a.empty()) raise_cause(std::string(a), t);
+  if (active_) raise_cause(active_->pending_alarm(), t);
+  raise_cause(probe_.pending_alarm(), t);
   if (profile_.drive.limit_switches == profile::LimitSwitchRule::Alarm && limits_.limit_switch_active())
     raise_cause(profile_.drive.alarms.limit_switch, t);
 

@@ -98,7 +98,7 @@ private:
   void command(const Setpoint& sp, const plant::AxisFeedback& fb, double dt);
   void latch_units();
   ModeHandler* handler_for(std::int8_t mode) const;
-  void raise_cause(const std::string& code, Nanos t);
+  void raise_cause(std::string_view code, Nanos t);
   void raise_injected(InjectedFault fault, Nanos t);
   bool main_power_present() const;
   void rereference(double found_position);

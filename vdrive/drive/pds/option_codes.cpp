@@ -54,12 +54,6 @@ StopKind fault_reaction_kind(std::int16_t code, std::int8_t /*mode*/, bool vendo
   }
 }
 
-void OptionCodes::Code::refresh() {
-  if (!ref.present()) return;
-  const std::int16_t v = ref.get();
-  if (v >= -2 && v <= 7 && (defined >> (v + 2)) & 1u) value = v;
-}
-
 OptionCodes::Code OptionCodes::make(od::ObjectStore& store, std::uint16_t index, std::uint16_t defined,
                                     std::int16_t fallback) {
   Code c{ObjectRef<std::int16_t>(store, index), fallback, defined};

@@ -44,7 +44,11 @@ private:
     ObjectRef<std::int16_t> ref;
     std::int16_t value = 0;       // last value the product defines
     std::uint16_t defined = 0;    // bit (code + 2) set for each code the product defines
-    void refresh();
+    void refresh() {  // inline: six of these run every control step
+      if (!ref.present()) return;
+      const std::int16_t v = ref.get();
+      if (v >= -2 && v <= 7 && (defined >> (v + 2)) & 1u) value = v;
+    }
   };
   static Code make(od::ObjectStore& store, std::uint16_t index, std::uint16_t defined, std::int16_t fallback);
 
