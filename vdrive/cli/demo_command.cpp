@@ -128,7 +128,8 @@ void run_demo(const DemoOptions& opt) {
   fmt::print("veth pair: {} (master) <-> {} (drives)\n", veth.master_end(), veth.slave_end());
 
   try {
-    const std::optional<int> domain = opt.telemetry ? std::optional<int>(telemetry_domain(opt.domain)) : std::nullopt;
+    std::optional<int> domain;
+    if (opt.telemetry) domain.emplace(telemetry_domain(opt.domain));
     ServedLine line(opt.drives, veth.slave_end(), domain);
     fmt::print("serving {} drive(s) on {}: {}\n", opt.drives.size(), veth.slave_end(), fmt::join(opt.drives, ", "));
     std::optional<TelemetryView> view;
