@@ -75,7 +75,7 @@ struct Esc::Impl final : PhysicalPort {
   bool write_range(Side side, std::uint16_t address, std::span<const std::uint8_t> in);
   bool read_byte(std::uint16_t address, std::uint8_t& out) override;    // ECAT, for FMMUs
   bool write_byte(std::uint16_t address, std::uint8_t value, std::uint8_t mask) override;
-  // Runs wholly in process RAM go through one access (SyncManagers still act byte by byte);
+  // Runs wholly in process RAM go through one access (each SyncManager takes its bytes as one run);
   // anything touching registers keeps the byte-by-byte path.
   bool read_bytes(std::uint16_t address, std::span<std::uint8_t> out) override;
   bool write_bytes(std::uint16_t address, std::span<const std::uint8_t> in) override;
