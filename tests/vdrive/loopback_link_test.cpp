@@ -64,6 +64,20 @@ TEST(LoopbackLink, DiscardsNonEtherCatFrames) {
   EXPECT_EQ(b->discarded(), 2u);
 }
 
+TEST(LoopbackLink, FrameWaitingIsAFreeLookThatTakesNothing) {
+  auto [a, b] = make_loopback_pair();
+  EXPECT_EQ(b->peek_cost(), PeekCost::Free);
+  EXPECT_FALSE(b->frame_waiting());
+  ASSERT_TRUE(a->send(frame(5)));
+  EXPECT_TRUE(b->frame_waiting());
+  EXPECT_TRUE(b->frame_waiting());
+  EXPECT_FALSE(a->frame_waiting()) << "a frame waits only at the end it was sent to";
+  std::array<std::uint8_t, kMaxFrame> buf{};
+  EXPECT_EQ(b->receive(buf, 0), 60u);
+  EXPECT_EQ(buf[14], 5);
+  EXPECT_FALSE(b->frame_waiting());
+}
+
 TEST(LoopbackLink, RingFullRefusesAndEmptyReturnsZero) {
   auto [a, b] = make_loopback_pair(4);
   std::array<std::uint8_t, kMaxFrame> buf{};

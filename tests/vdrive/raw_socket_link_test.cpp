@@ -130,6 +130,27 @@ TEST_P(RawSocketLinkTest, ReceiveWaitsForTheTimeoutWhenNothingArrives) {
   EXPECT_EQ(b_->receive(buf, 0), 0u);  // a zero timeout only looks
 }
 
+// Waits up to 500 ms for frame_waiting() to say true (a veth hands a frame over in microseconds).
+bool frame_arrives(Link& link) {
+  for (int i = 0; i < 500; ++i) {
+    if (link.frame_waiting()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
+TEST_P(RawSocketLinkTest, FrameWaitingTellsWithoutTakingTheFrame) {
+  EXPECT_EQ(b_->peek_cost(), GetParam() ? PeekCost::Free : PeekCost::SystemCall);
+  EXPECT_FALSE(b_->frame_waiting());
+  const auto frame = ethercat_frame(0x07, 0, 0x0130, 2);
+  ASSERT_TRUE(a_->send(frame));
+  ASSERT_TRUE(frame_arrives(*b_));
+  EXPECT_TRUE(b_->frame_waiting()) << "asking twice takes nothing";
+  EXPECT_EQ(receive_one(*b_, 0), frame);
+  EXPECT_FALSE(b_->frame_waiting());
+  EXPECT_FALSE(a_->frame_waiting()) << "our own send is not a frame waiting for us";
+}
+
 TEST_P(RawSocketLinkTest, HasAPollableDescriptor) {
   EXPECT_GE(a_->fd(), 0);
   EXPECT_EQ(a_->interface_name(), veth_->a());
@@ -268,6 +289,15 @@ TEST_F(TapLinkTest, MasterFrameArrivesAndReplyReturns) {
   reply[reply.size() - 2] = 1;  // working counter 1
   ASSERT_TRUE(tap_->send(reply));
   EXPECT_EQ(receive_one(*master_), reply);
+}
+
+TEST_F(TapLinkTest, FrameWaitingTellsWithoutTakingTheFrame) {
+  EXPECT_EQ(tap_->peek_cost(), PeekCost::SystemCall);
+  const auto request = ethercat_frame(0x07, 0, 0x0000, 2);
+  ASSERT_TRUE(master_->send(request));
+  ASSERT_TRUE(frame_arrives(*tap_));
+  EXPECT_EQ(receive_one(*tap_, 0), request);
+  EXPECT_FALSE(tap_->frame_waiting());
 }
 
 TEST_F(TapLinkTest, NonEtherCatTrafficIsDiscarded) {

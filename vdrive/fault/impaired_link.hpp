@@ -29,6 +29,10 @@ public:
   std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
   bool send(std::span<const std::uint8_t> frame) override;
   int fd() const override { return inner_.fd(); }
+  // The inner link's while the wire is clean; while it holds or changes frames, a frame's
+  // arrival is the impairment's to decide, so nothing may overtake: Unsupported.
+  link::PeekCost peek_cost() const override { return engaged_ ? link::PeekCost::Unsupported : inner_.peek_cost(); }
+  bool frame_waiting() override { return !engaged_ && inner_.frame_waiting(); }
 
   // Re-reads the impairment's settings: call after changing them.
   void refresh();

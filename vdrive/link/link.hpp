@@ -13,6 +13,13 @@ namespace vdrive::link {
 constexpr std::uint16_t kEtherTypeEtherCat = 0x88A4;
 constexpr std::size_t kMaxFrame = 1518;  // without FCS; VLAN-tagged frames fit too
 
+// What asking Link::frame_waiting() costs, so a caller can decide how often to ask.
+enum class PeekCost {
+  Unsupported,  // the link cannot tell: frame_waiting() is always false
+  Free,         // a memory load (a receive ring, an in-process queue): ask as often as you like
+  SystemCall,   // a non-blocking system call (about a microsecond): ask sparingly
+};
+
 class Link {
 public:
   virtual ~Link() = default;
@@ -22,6 +29,12 @@ public:
   // Sends one frame; frames shorter than 60 bytes are sent as they are (the kernel/NIC pads).
   // Returns false if the link refused it (link down, buffer full).
   virtual bool send(std::span<const std::uint8_t> frame) = 0;
+  // Whether receive(buf, 0) would find a frame now, without taking it: lets a busy loop let a
+  // frame overtake other work (runtime::FrameOvertake). May say true for a frame that receive()
+  // then discards (not EtherCAT, our own send); never false while an EtherCAT frame waits,
+  // except where peek_cost() is Unsupported.
+  virtual PeekCost peek_cost() const { return PeekCost::Unsupported; }
+  virtual bool frame_waiting() { return false; }
   // A pollable file descriptor, or -1 for links that are not backed by one.
   virtual int fd() const { return -1; }
 };

@@ -51,6 +51,8 @@ class LoopbackLink final : public Link {
 public:
   std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
   bool send(std::span<const std::uint8_t> frame) override;
+  PeekCost peek_cost() const override { return PeekCost::Free; }
+  bool frame_waiting() override { return !rx_.empty(); }
 
   // Frames taken from the ring but not returned: not EtherCAT, or too long for the buffer.
   std::uint64_t discarded() const { return discarded_; }

@@ -100,6 +100,12 @@ void RawSocketLink::map_rx_ring() {
   slots_ = req.tp_frame_nr;
 }
 
+bool RawSocketLink::frame_waiting() {
+  if (ring_ == nullptr) return net::wait_readable(fd_, 0);
+  const auto* hdr = reinterpret_cast<const tpacket2_hdr*>(ring_ + next_slot_ * slot_bytes_);
+  return (__atomic_load_n(&hdr->tp_status, __ATOMIC_ACQUIRE) & TP_STATUS_USER) != 0;
+}
+
 int RawSocketLink::take_from_ring(std::span<std::uint8_t> buf, std::size_t& len) {
   auto* slot = ring_ + next_slot_ * slot_bytes_;
   auto* hdr = reinterpret_cast<tpacket2_hdr*>(slot);

@@ -57,6 +57,9 @@ public:
   std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
   bool send(std::span<const std::uint8_t> frame) override;
   int fd() const override { return fd_; }
+  // Free with the receive ring (a look at the next slot), a zero-timeout poll() without it.
+  PeekCost peek_cost() const override { return ring_ != nullptr ? PeekCost::Free : PeekCost::SystemCall; }
+  bool frame_waiting() override;
 
   const std::string& interface_name() const { return name_; }
   int interface_index() const { return ifindex_; }

@@ -88,6 +88,8 @@ std::size_t TapLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
   }
 }
 
+bool TapLink::frame_waiting() { return net::wait_readable(fd_, 0); }
+
 bool TapLink::send(std::span<const std::uint8_t> frame) {
   for (;;) {
     ssize_t n = ::write(fd_, frame.data(), frame.size());

@@ -29,6 +29,8 @@ public:
   std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
   bool send(std::span<const std::uint8_t> frame) override;
   int fd() const override { return fd_; }
+  PeekCost peek_cost() const override { return PeekCost::SystemCall; }  // a zero-timeout poll()
+  bool frame_waiting() override;
 
   // The kernel's name for the device (as requested).
   const std::string& interface_name() const { return name_; }

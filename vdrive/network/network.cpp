@@ -46,19 +46,23 @@ bool Network::process_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) {
   return returns;
 }
 
-void Network::service_irqs(Nanos now) {
+void Network::service_irqs(Nanos now, BetweenSlaves* between) {
   for (auto& slave : slaves_) {
-    if (slave->esc->pdi_irq() != 0) slave->firmware->on_irq(now);
+    if (slave->esc->pdi_irq() == 0) continue;
+    slave->firmware->on_irq(now);
+    if (between != nullptr) between->run();
   }
 }
 
-void Network::tick(Nanos now) {
+void Network::tick(Nanos now, BetweenSlaves* between) {
   for (auto& slave : slaves_) {
     if (slave->esc->next_deadline() <= now) slave->esc->tick(now);
   }
-  service_irqs(now);  // SYNC and watchdog events reach the firmware as IRQs
+  service_irqs(now, between);  // SYNC and watchdog events reach the firmware as IRQs
   for (auto& slave : slaves_) {
-    if (slave->firmware->next_deadline() <= now) slave->firmware->tick(now);
+    if (slave->firmware->next_deadline() > now) continue;
+    slave->firmware->tick(now);
+    if (between != nullptr) between->run();
   }
 }
 

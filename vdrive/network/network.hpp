@@ -17,6 +17,7 @@
 #include "common/clock.hpp"
 #include "esc_model/esc.hpp"
 #include "vdrive/firmware/slave_firmware.hpp"
+#include "vdrive/network/between_slaves.hpp"
 #include "vdrive/network/segment.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
@@ -53,10 +54,12 @@ public:
   // and a slow firmware task (a flash write) never delays it. process_frame() does both.
   bool process_frame(std::span<std::uint8_t> ethernet_frame, Nanos now);
   bool forward_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) { return segment_.process(ethernet_frame, now); }
-  // Runs the firmware of every slave whose PDI interrupt is asserted.
-  void service_irqs(Nanos now);
-  // Runs every ESC and firmware timer due at `now`, and firmware IRQs they raise.
-  void tick(Nanos now);
+  // Runs the firmware of every slave whose PDI interrupt is asserted. `between` (optional) runs
+  // after each slave's firmware call.
+  void service_irqs(Nanos now, BetweenSlaves* between = nullptr);
+  // Runs every ESC and firmware timer due at `now`, and firmware IRQs they raise. `between`
+  // (optional) runs after each firmware call, not between the ESCs' own timers.
+  void tick(Nanos now, BetweenSlaves* between = nullptr);
   // Earliest time tick() has work to do, or INT64_MAX.
   Nanos next_deadline() const;
   // Switches every drive off and on again: ESC power-on reset (the EEPROM keeps its contents),

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "vdrive/runtime/frame_overtake.hpp"
+
 namespace vdrive::runtime {
 namespace {
 
@@ -17,22 +19,9 @@ constexpr int kMaxTicksPerInstant = 100'000;
 
 using FrameBuffer = std::array<std::uint8_t, link::kMaxFrame>;
 
-// Only the loop thread writes, so a relaxed load+store suffices (and avoids a locked RMW).
-void bump(std::atomic<std::uint64_t>& counter) {
-  counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
-}
-
 void handle_frame(network::Network& network, link::Link& link, std::span<std::uint8_t> frame,
                   Nanos now, LoopCounters& counters) {
-  bump(counters.frames_in);
-  // The frame goes back before the firmware reacts to it (architecture.md).
-  if (!network.forward_frame(frame, now)) {
-    bump(counters.dropped);
-  } else if (link.send(frame)) {
-    bump(counters.frames_out);
-  } else {
-    bump(counters.send_failed);
-  }
+  pass_frame(network, link, frame, now, counters);
   // Even a destroyed frame may have changed ESC state before its error was found.
   network.service_irqs(now);
 }
@@ -49,20 +38,21 @@ void serve(network::Network& network, link::Link& link, const Clock& clock,
 
 void serve_once(network::Network& network, link::Link& link, const Clock& clock, Nanos until,
                 LoopCounters& counters, LoopService* service) {
-  FrameBuffer buf;
   Nanos now = clock.now();
   if (service != nullptr) service->poll(now);
+  FrameOvertake overtake(network, link, clock, counters, now);
   Nanos deadline = network.next_deadline();
   if (deadline <= now) {
-    network.tick(now);
+    network.tick(now, overtake.hook());
+    overtake.service_owed_irqs();
     deadline = network.next_deadline();
     now = clock.now();
   }
   if (service != nullptr) deadline = std::min(deadline, service->next_deadline());
   deadline = std::min(deadline, until);
   const Nanos wait = deadline == kNever ? kMaxWait : std::clamp(deadline - now, Nanos{0}, kMaxWait);
-  const std::size_t n = link.receive(buf, wait);
-  if (n != 0) handle_frame(network, link, std::span(buf).first(n), clock.now(), counters);
+  const std::size_t n = link.receive(overtake.buffer(), wait);
+  if (n != 0) overtake.serve_frame(n, clock.now());
 }
 
 void run_until(network::Network& network, link::Link& link, VirtualClock& clock, Nanos until,

@@ -1,8 +1,9 @@
 #pragma once
 // The event loop: one thread owns a Network and a Link. It receives a frame (waiting at most
 // until the next timer deadline), runs it through the line, sends the reply, then runs due
-// timers. No locks, no allocation; the counters are single-writer atomics so another thread
-// (a status line) may read them.
+// timers. In real time a frame that arrives while the firmware runs overtakes it
+// (frame_overtake.hpp). No locks, no allocation; the counters are single-writer atomics so
+// another thread (a status line) may read them.
 //
 // serve() runs in real time until `stop` is set; run_until() is the same loop in virtual time
 // for tests and scenarios: it handles every frame already waiting and jumps the VirtualClock from
@@ -12,6 +13,7 @@
 
 #include "common/clock.hpp"
 #include "vdrive/link/link.hpp"
+#include "vdrive/runtime/loop_counters.hpp"
 #include "vdrive/runtime/loop_service.hpp"
 #include "vdrive/network/network.hpp"
 
@@ -20,13 +22,6 @@ namespace vdrive::runtime {
 // Longest single wait in serve(), so a stop request is noticed even if no signal interrupts the
 // wait and no timer is due.
 constexpr Nanos kMaxWait = 10'000'000;
-
-struct LoopCounters {
-  std::atomic<std::uint64_t> frames_in{0};    // EtherCAT frames received from the link
-  std::atomic<std::uint64_t> frames_out{0};   // frames sent back to the master
-  std::atomic<std::uint64_t> dropped{0};      // frames the line destroyed (malformed, cable cut)
-  std::atomic<std::uint64_t> send_failed{0};  // replies the link refused (link down, full)
-};
 
 // Serves until `stop` becomes true (checked at least every kMaxWait). An exception from the
 // link (LinkError: its interface was removed) ends serving and propagates. Sets the calling

@@ -23,6 +23,8 @@ public:
     return sent;
   }
   int fd() const override { return inner_.fd(); }
+  link::PeekCost peek_cost() const override { return inner_.peek_cost(); }
+  bool frame_waiting() override { return inner_.frame_waiting(); }
 
 private:
   link::Link& inner_;

@@ -1,0 +1,21 @@
+#pragma once
+// The event loop's frame counters: written by the loop thread only (bump), read by any thread
+// (a status line, telemetry).
+#include <atomic>
+#include <cstdint>
+
+namespace vdrive::runtime {
+
+struct LoopCounters {
+  std::atomic<std::uint64_t> frames_in{0};    // EtherCAT frames received from the link
+  std::atomic<std::uint64_t> frames_out{0};   // frames sent back to the master
+  std::atomic<std::uint64_t> dropped{0};      // frames the line destroyed (malformed, cable cut)
+  std::atomic<std::uint64_t> send_failed{0};  // replies the link refused (link down, full)
+};
+
+// Only the loop thread writes, so a relaxed load+store suffices (and avoids a locked RMW).
+inline void bump(std::atomic<std::uint64_t>& counter) {
+  counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+}
+
+}  // namespace vdrive::runtime
