@@ -8,31 +8,7 @@ namespace vdrive::esc {
 
 namespace {
 constexpr int kPorts = 4;
-constexpr std::uint8_t kPortNotImplemented = 0;
 }  // namespace
-
-bool Esc::Impl::port_implemented(int port) const {
-  return ((identity.port_descriptor >> (2 * port)) & 0x03) != kPortNotImplemented;
-}
-
-bool Esc::Impl::loop_closed(int port) const {
-  if (!port_implemented(port)) return true;
-  const auto setting = static_cast<reg::dl_control::Loop>(
-      (get32(reg::kDlControl) >> (reg::dl_control::kLoopShift + 2 * port)) & 0x03);
-  const bool link = links.port[port];
-  switch (setting) {
-    case reg::dl_control::Loop::Open: return false;
-    case reg::dl_control::Loop::Closed: return true;
-    case reg::dl_control::Loop::AutoClose: return !link || auto_closed[port];
-    case reg::dl_control::Loop::Auto: break;
-  }
-  return !link;
-}
-
-bool Esc::Impl::port0_closed_by_master() const {
-  return static_cast<reg::dl_control::Loop>((get32(reg::kDlControl) >> reg::dl_control::kLoopShift) &
-                                            0x03) == reg::dl_control::Loop::Closed;
-}
 
 void Esc::Impl::update_dl_status() {
   std::uint16_t s = 0;

@@ -39,6 +39,10 @@ bool Esc::Impl::process_frame(std::span<std::uint8_t> pdu, const FrameTiming& fr
     count_rx_error();
     return false;
   }
+  return execute_frame(pdu, count, frame_timing);
+}
+
+bool Esc::Impl::execute_frame(std::span<std::uint8_t> pdu, std::size_t count, const FrameTiming& frame_timing) {
   DatagramView first(pdu.subspan(kEthercatHeaderSize));
   if (port0_closed_by_master()) {
     if (first.circulating()) return false;
@@ -185,9 +189,20 @@ std::uint16_t Esc::Impl::physical_read_write(std::uint16_t ado, std::span<std::u
 std::uint16_t Esc::Impl::logical(std::uint32_t address, std::span<std::uint8_t> data,
                                  bool do_read, bool do_write) {
   // Writes use the data as it arrived, so an LRW over overlapping read and write windows
-  // (inputs and outputs at the same logical address) writes the master's outputs.
-  const std::span<std::uint8_t> sent = std::span<std::uint8_t>(scratch_in).first(data.size());
-  if (do_write) std::copy(data.begin(), data.end(), sent.begin());
+  // (inputs and outputs at the same logical address) writes the master's outputs. Only the
+  // bytes this ESC's write windows take are kept aside: on a long line the datagram is mostly
+  // other slaves' data.
+  std::span<const std::uint8_t> sent = data;
+  if (do_read && do_write) {
+    const std::span<std::uint8_t> kept = std::span<std::uint8_t>(scratch_in).first(data.size());
+    for (int n = 0; n < fmmu_count; ++n) {
+      std::size_t offset = 0;
+      std::size_t count = 0;
+      if (!fmmus[static_cast<std::size_t>(n)].written_bytes(address, data.size(), offset, count)) continue;
+      std::copy_n(data.begin() + static_cast<std::ptrdiff_t>(offset), count, kept.begin() + static_cast<std::ptrdiff_t>(offset));
+    }
+    sent = kept;
+  }
   bool read_done = false;
   bool write_done = false;
   for (int n = 0; n < fmmu_count; ++n) {

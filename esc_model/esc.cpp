@@ -133,6 +133,10 @@ bool Esc::process_frame(std::span<std::uint8_t> pdu, const FrameTiming& timing) 
   return impl_->process_frame(pdu, timing);
 }
 
+bool Esc::process_checked_frame(std::span<std::uint8_t> pdu, std::size_t datagrams, const FrameTiming& timing) {
+  return impl_->execute_frame(pdu, datagrams, timing);
+}
+
 void Esc::count_rx_error(int port, bool forwarded) {
   if (port < 0 || port > 3) return;
   impl_->count_rx_error(port, forwarded);

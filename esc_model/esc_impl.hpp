@@ -106,16 +106,33 @@ struct Esc::Impl final : PhysicalPort {
   std::uint32_t al_event_request() const { return get32(reg::kAlEventRequest); }
   std::uint16_t ecat_event_request() const { return get16(reg::kEcatEventRequest); }
 
-  // ---- data link (data_link.cpp)
-  bool loop_closed(int port) const;
-  bool port0_closed_by_master() const;
-  bool port_implemented(int port) const;
+  // ---- data link (data_link.cpp; these three inline: the segment asks them for every frame)
+  bool port_implemented(int port) const { return ((identity.port_descriptor >> (2 * port)) & 0x03) != 0; }
+  bool loop_closed(int port) const {
+    if (!port_implemented(port)) return true;
+    const auto setting = static_cast<reg::dl_control::Loop>(
+        (get32(reg::kDlControl) >> (reg::dl_control::kLoopShift + 2 * port)) & 0x03);
+    const bool link = links.port[port];
+    switch (setting) {
+      case reg::dl_control::Loop::Open: return false;
+      case reg::dl_control::Loop::Closed: return true;
+      case reg::dl_control::Loop::AutoClose: return !link || auto_closed[port];
+      case reg::dl_control::Loop::Auto: break;
+    }
+    return !link;
+  }
+  bool port0_closed_by_master() const {
+    return static_cast<reg::dl_control::Loop>((get32(reg::kDlControl) >> reg::dl_control::kLoopShift) & 0x03) ==
+           reg::dl_control::Loop::Closed;
+  }
   void update_dl_status();
   void dl_control_written();
   void links_changed(const PortLinks& now);
 
   // ---- datagrams (datagram_engine.cpp)
   bool process_frame(std::span<std::uint8_t> pdu, const FrameTiming& frame_timing);
+  // The datagrams of a checked DLPDU frame (`count` of them).
+  bool execute_frame(std::span<std::uint8_t> pdu, std::size_t count, const FrameTiming& frame_timing);
   void execute(DatagramView dg);
   bool addressed_configured(std::uint16_t adp) const;
   std::uint16_t physical_read(std::uint16_t ado, std::span<std::uint8_t> data, bool or_data);

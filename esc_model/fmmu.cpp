@@ -106,6 +106,17 @@ Fmmu::Transfer Fmmu::read(std::uint32_t logical, std::span<std::uint8_t> frame,
   return t;
 }
 
+bool Fmmu::written_bytes(std::uint32_t logical, std::size_t length, std::size_t& offset,
+                         std::size_t& count) const {
+  std::uint64_t first = 0;
+  std::uint64_t last = 0;
+  if (!writable || !overlap_bits(logical, length, first, last)) return false;
+  const std::uint64_t dg_first = static_cast<std::uint64_t>(logical) * 8;
+  offset = static_cast<std::size_t>((first - dg_first) / 8);
+  count = static_cast<std::size_t>((last - dg_first) / 8) - offset + 1;
+  return true;
+}
+
 Fmmu::Transfer Fmmu::write(std::uint32_t logical, std::span<const std::uint8_t> source,
                            PhysicalPort& port) const {
   Transfer t;

@@ -53,6 +53,9 @@ struct Fmmu {
   Transfer read(std::uint32_t logical, std::span<std::uint8_t> frame, PhysicalPort& port) const;
   Transfer write(std::uint32_t logical, std::span<const std::uint8_t> source,
                  PhysicalPort& port) const;
+  // The bytes of a `length`-byte datagram at `logical` that write() takes from `source`, as
+  // [offset, offset + count); false if it takes none.
+  bool written_bytes(std::uint32_t logical, std::size_t length, std::size_t& offset, std::size_t& count) const;
 
 private:
   bool byte_aligned() const {

@@ -91,6 +91,34 @@ TEST_F(FmmuTest, LrwOverOverlappingReadAndWriteWindowsWritesWhatTheMasterSent) {
   EXPECT_EQ(esc->peek(0x1101), 0x22);
 }
 
+TEST_F(FmmuTest, LrwDeepInALongImageWritesWhatTheMasterSentWhereAnEarlierReadWindowOverlaps) {
+  // FMMU 0 reads 0x10002..0x10005 back before FMMU 1 writes 0x10000..0x10003 and FMMU 2 bits
+  // 2..5 of 0x10005: the writes must still store the master's bits. The windows sit 1,000 bytes
+  // into a 1,400-byte datagram.
+  fpwr(0x0600, fmmu_regs(0x10002, 4, 0x1200, kRead));
+  fpwr(0x0610, fmmu_regs(0x10000, 4, 0x1100, kWrite));
+  fpwr(0x0620, fmmu_regs(0x10005, 1, 0x1300, kWrite, 2, 5, 2));
+  pdi_write(0x1202, {0x00, 0x00});
+  constexpr std::uint32_t kStart = 0x10000 - 1000;
+  std::vector<std::uint8_t> image(1400, 0xEE);
+  image[1000] = 0x11;
+  image[1001] = 0x22;
+  image[1002] = 0x33;
+  image[1003] = 0x44;
+  image[1005] = 0x3C;  // bits 2..5 set
+  Result r = logical(cmd::LRW, kStart, image);
+  EXPECT_EQ(r.wkc, 3);
+  EXPECT_EQ(r.data[1002], 0xC1);
+  EXPECT_EQ(r.data[1003], 0xC2);
+  EXPECT_EQ(r.data[1005], 0x00) << "read back from 0x1203";
+  EXPECT_EQ(r.data[999], 0xEE) << "bytes of other slaves pass untouched";
+  EXPECT_EQ(esc->peek(0x1100), 0x11);
+  EXPECT_EQ(esc->peek(0x1101), 0x22);
+  EXPECT_EQ(esc->peek(0x1102), 0x33);
+  EXPECT_EQ(esc->peek(0x1103), 0x44);
+  EXPECT_EQ(esc->peek(0x1300), 0x3C);
+}
+
 TEST_F(FmmuTest, LrwThroughTwoSlavesAccumulatesWorkingCounter) {
   VirtualClock c2;
   Esc second(default_config(), c2);

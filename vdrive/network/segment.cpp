@@ -1,6 +1,8 @@
 // The line of slaves: frame path, per-hop timing, links. See segment.hpp.
 #include "vdrive/network/segment.hpp"
 
+#include "esc_model/datagram.hpp"
+
 namespace vdrive::network {
 namespace {
 
@@ -37,21 +39,21 @@ void Segment::append(esc::Esc& esc) {
 void Segment::set_cable(int after_slave, bool connected) {
   const long into = static_cast<long>(after_slave) + 1;
   if (into < 0 || into >= static_cast<long>(slaves_.size())) return;
-  cable_ok_[static_cast<std::size_t>(into)] = connected;
+  cable_ok_[static_cast<std::size_t>(into)] = connected ? 1 : 0;
   update_links();
 }
 
 bool Segment::cable_connected(int after_slave) const {
   const long into = static_cast<long>(after_slave) + 1;
   if (into < 0 || into >= static_cast<long>(slaves_.size())) return false;
-  return cable_ok_[static_cast<std::size_t>(into)];
+  return cable_ok_[static_cast<std::size_t>(into)] != 0;
 }
 
 void Segment::update_links() {
   for (std::size_t i = 0; i < slaves_.size(); ++i) {
     esc::PortLinks links;
-    links.port[0] = cable_ok_[i];
-    links.port[1] = i + 1 < slaves_.size() && cable_ok_[i + 1];
+    links.port[0] = cable_ok_[i] != 0;
+    links.port[1] = i + 1 < slaves_.size() && cable_ok_[i + 1] != 0;
     slaves_[i]->set_links(links);
   }
 }
@@ -81,11 +83,18 @@ bool Segment::process(std::span<std::uint8_t> frame, Nanos rx_time) {
   const std::size_t turn = turning_slave();
 
   const std::span<std::uint8_t> pdu = frame.subspan(payload);
+  // A well-formed DLPDU frame is checked once for the whole line (Esc::process_checked_frame);
+  // anything else goes through each ESC's own check, which destroys or passes it.
+  const bool dlpdu = pdu.size() >= esc::kEthercatHeaderSize &&
+                     esc::parse_ethercat_header(pdu).type == esc::kFrameTypeDlpdu;
+  const std::size_t datagrams = dlpdu ? esc::validate_dlpdu(pdu) : 0;
   for (std::size_t i = 0; i <= turn; ++i) {
     esc::FrameTiming timing;
     timing.port0_rx = rx_time + static_cast<Nanos>(i) * hop_delay_;
     if (i < turn) timing.port1_rx = rx_time + static_cast<Nanos>(2 * turn - i) * hop_delay_;
-    if (!slaves_[i]->process_frame(pdu, timing)) {
+    const bool passed = datagrams != 0 ? slaves_[i]->process_checked_frame(pdu, datagrams, timing)
+                                       : slaves_[i]->process_frame(pdu, timing);
+    if (!passed) {
       ++dropped_;
       return false;
     }

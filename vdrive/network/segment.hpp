@@ -59,7 +59,7 @@ private:
   std::size_t turning_slave() const;
   Nanos hop_delay_;
   std::vector<esc::Esc*> slaves_;
-  std::vector<bool> cable_ok_;   // cable_ok_[i]: cable into slave i (from master or slave i-1)
+  std::vector<std::uint8_t> cable_ok_;  // cable_ok_[i] != 0: cable into slave i (from master or slave i-1)
   std::uint64_t dropped_ = 0;
 };
 
