@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Integration (issue 9, part 7): `vdrive run --busy-poll-us 200 --cpu 0`, and then `vdrive run
-# --rx-ring`, serve a6b, ds5c1, ds1000a as before — `vdrive-master op --dc` runs 2,000 cycles with
-# zero wrong working counters against each — and `--cpu` naming a CPU that does not exist is
-# refused with exit 2 and a one-line error naming the option. (What busy polling and the ring save
-# is measured by bench/turnaround/run.sh, not here.)
+# Integration (issue 9, part 7): `vdrive run --busy-poll-us 200 --cpu 0` (receive ring and time
+# slice by default), and then `vdrive run --no-rx-ring --slice-us 200` (recvfrom, frames
+# overtaking the firmware through rationed poll() peeks), serve a6b, ds5c1, ds1000a as before —
+# `vdrive-master op --dc` runs 2,000 cycles with zero wrong working counters against each — and
+# `--cpu` naming a CPU that does not exist is refused with exit 2 and a one-line error naming the
+# option. (What these options save is measured by bench/turnaround/run.sh, not here.)
 # Usage: bash run_speed_options.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
 set -u
 
@@ -31,11 +32,11 @@ wait_for_line
 op_clean "--busy-poll-us 200 --cpu 0"
 
 kill "$VDRIVE_PID" && wait "$VDRIVE_PID" 2>/dev/null
-ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --rx-ring --drive a6b --drive ds5c1 --drive ds1000a \
-  >"$WORK/vdrive.log" 2>&1 &
+ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --no-rx-ring --slice-us 200 --drive a6b --drive ds5c1 \
+  --drive ds1000a >"$WORK/vdrive.log" 2>&1 &
 VDRIVE_PID=$!
 wait_for_line
-op_clean "--rx-ring"
+op_clean "--no-rx-ring --slice-us 200"
 
 err=$(ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --cpu 1000 --drive a6b 2>&1 >/dev/null)
 rc=$?

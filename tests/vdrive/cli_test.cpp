@@ -103,6 +103,17 @@ TEST(Cli, RtPriorityOutOfRangeIsNamed) {
   }
 }
 
+TEST(Cli, SliceOutOfRangeOrWithSchedFifoIsNamed) {
+  for (const char* bad : {"99", "100001", "short"}) {
+    const auto r = vdrive({"run", "--iface", "lo", "--drive", "a6b", "--slice-us", bad});
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    expect_one_error_line(r, "--slice-us");
+  }
+  const auto r = vdrive({"run", "--iface", "lo", "--drive", "a6b", "--slice-us", "200", "--rt-priority", "10"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--slice-us");
+}
+
 TEST(Cli, IfaceAndTapExcludeEachOther) {
   const auto r = vdrive({"run", "--iface", "lo", "--tap", "vdt0", "--drive", "a6b"});
   EXPECT_EQ(r.exit_code, 2);

@@ -26,6 +26,7 @@
 #include "vdrive/network/network.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/runtime/time_slice.hpp"
 #include "vdrive/telemetry/telemetry_client.hpp"
 #include "vdrive/telemetry/topics.hpp"
 
@@ -59,6 +60,9 @@ public:
                                                                                   telemetry::LineTelemetryOptions{100.0, *telemetry_domain}, nullptr)
                                     : nullptr),
         thread_([this] {
+          // As `vdrive run` by default: where the kernel has it, a short slice lets the line's
+          // wake-ups preempt the demo's master and the host's other tasks (runtime/time_slice.hpp).
+          (void)runtime::set_time_slice(100'000);
           if (telemetry_) runtime::serve(network_, telemetry_->link(), clock_, stop_, counters_, &telemetry_->service());
           else runtime::serve(network_, link_, clock_, stop_, counters_);
         }) {}

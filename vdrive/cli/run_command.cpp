@@ -32,6 +32,7 @@
 #include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/runtime/loop_waker.hpp"
 #include "vdrive/runtime/cpu_affinity.hpp"
+#include "vdrive/runtime/time_slice.hpp"
 #include "vdrive/runtime/realtime.hpp"
 #include "vdrive/runtime/stop_signal.hpp"
 
@@ -47,8 +48,10 @@ struct RunOptions {
   bool no_qdisc_bypass = false;
   int rt_priority = 0;  // 0: normal scheduling
   long busy_poll_us = 0;  // raw socket: spin before sleeping (RawSocketLink::Options::busy_poll)
-  bool rx_ring = false;   // raw socket: frames from a PACKET_RX_RING (RawSocketLink::Options::rx_ring)
+  bool no_rx_ring = false;  // raw socket: recvfrom instead of the PACKET_RX_RING (RawSocketLink::Options::rx_ring)
   int cpu = -1;           // pin the serving thread; -1: no pinning
+  long slice_us = 100;    // the serving thread's time slice (runtime::set_time_slice); 0: the kernel's
+  bool slice_given = false;  // --slice-us on the command line or in the config: failing to set it is an error
   std::vector<std::string> plants;  // "N:FILE": slave N (cable order, from 0) moves the plant in FILE
   std::string control;              // runtime control socket; empty: default_control_path()
   std::uint64_t fault_seed = 1;     // wire impairment's generator
@@ -151,13 +154,24 @@ int exit_code_for(link::LinkError::Kind kind) {
   return kExitFailure;
 }
 
+// The serving thread's slice: asked for by default, where the kernel has it (SCHED_FIFO needs none).
+void apply_time_slice(const RunOptions& o) {
+  if (o.slice_us == 0 || (o.rt_priority != 0 && !o.slice_given)) return;
+  const int err = runtime::set_time_slice(o.slice_us * 1000);
+  if (err == 0) return;
+  const std::string why = err == ENOTSUP ? "this kernel keeps no time slice of a thread's own (Linux 6.12 or later does)"
+                                         : std::strerror(err);
+  if (o.slice_given) throw CliError(kExitFailure, fmt::format("--slice-us {}: {}", o.slice_us, why));
+  spdlog::info("serving with the kernel's time slice: {}", why);
+}
+
 std::unique_ptr<link::Link> open_link(const RunOptions& o) {
   try {
     if (!o.tap.empty()) return std::make_unique<link::TapLink>(o.tap);
     link::RawSocketLink::Options options;
     options.qdisc_bypass = !o.no_qdisc_bypass;
     options.busy_poll = static_cast<Nanos>(o.busy_poll_us) * 1000;
-    options.rx_ring = o.rx_ring;
+    options.rx_ring = !o.no_rx_ring;
     return std::make_unique<link::RawSocketLink>(o.iface, options);
   } catch (const link::LinkError& e) {
     throw CliError(exit_code_for(e.kind()), e.what());
@@ -212,12 +226,14 @@ void run(const RunOptions& o) {
   RunStatus status(o.status, *network, counters);  // the live status line (run_status.hpp)
   const std::unique_ptr<telemetry::LineTelemetry> telemetry =
       start_run_telemetry(o.telemetry, *network, impaired, clock, counters, &faults, [&waker] { waker.wake(); });
-  // Pinned last, so the threads started above (control, telemetry) stay off the serving CPU.
+  // Pinned last, so the threads started above (control, telemetry) stay off the serving CPU;
+  // likewise the slice is the serving thread's alone.
   if (o.cpu >= 0) {
     if (const int err = runtime::pin_to_cpu(o.cpu); err != 0)
       throw CliError(kExitBadArguments, fmt::format("--cpu {}: {} (no such CPU, or not one this process may use)", o.cpu,
                                                     std::strerror(err)));
   }
+  apply_time_slice(o);
   try {
     if (telemetry) runtime::serve(*network, telemetry->link(), clock, stop, counters, status.wrap(&telemetry->service()));
     else runtime::serve(*network, impaired, clock, stop, counters, status.wrap(control ? &faults : nullptr));
@@ -256,9 +272,21 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::Range(Nanos{0}, Nanos{1'000'000'000}));
   cmd->add_option("--profile-dir", o->profile_dir,
                   "Load profiles from DIR/<id>/profile.yaml instead of the built-in ones");
-  cmd->add_option("--rt-priority", o->rt_priority,
+  CLI::Option* rt = cmd->add_option("--rt-priority", o->rt_priority,
                   "Serve with SCHED_FIFO priority 1..99 and locked memory (default: normal)")
       ->check(CLI::Range(1, 99));
+  CLI::Option* slice = cmd->add_option("--slice-us", o->slice_us,
+                  "Time slice of the serving thread in us (100..100000; Linux 6.12+): a frame or deadline waking it "
+                  "preempts another task on its CPU at once. 0: the kernel's (default 100; skipped where the kernel "
+                  "lacks it)")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            long us = -1;
+            if (CLI::detail::lexical_cast(v, us) && (us == 0 || (us >= 100 && us <= 100'000))) return {};
+            return "Value " + v + " is neither 0 (the kernel's slice) nor 100 to 100000";
+          },
+          "0 or 100..100000"))
+      ->excludes(rt);
   CLI::Option* control = cmd->add_option("--control", o->control,
                   "Runtime fault control socket (default $XDG_RUNTIME_DIR/vdrive/IFACE.sock, /run/vdrive/IFACE.sock "
                   "for root, else /tmp/vdrive-UID/IFACE.sock); see vdrive fault");
@@ -270,15 +298,22 @@ void add_run_command(CLI::App& app) {
                   "Raw socket: spin up to US microseconds for the next frame before sleeping (default 0: sleep at once)")
       ->check(CLI::Range(0L, 1'000'000L));
   cmd->add_option("--cpu", o->cpu, "Pin the serving thread to CPU N (default: not pinned)")->check(CLI::Range(0, 1023));
-  cmd->add_flag("--rx-ring", o->rx_ring,
-                "Raw socket: take frames from a ring shared with the kernel (PACKET_RX_RING) instead of recvfrom")
+  CLI::Option* ring = cmd->add_flag("--no-rx-ring", o->no_rx_ring,
+                "Raw socket: one recvfrom per frame instead of the receive ring shared with the kernel (PACKET_RX_RING, "
+                "the default)")
       ->excludes(tap);
+  // The ring became the default; the old flag still means it.
+  cmd->add_flag("--rx-ring")
+      ->description("Raw socket: take frames from the receive ring (the default)")
+      ->excludes(tap)
+      ->excludes(ring);
   cmd->add_flag("--no-qdisc-bypass", o->no_qdisc_bypass,
                 "Send through the qdisc layer (so tc sees replies); default bypasses it");
-  cmd->callback([o] {
+  cmd->callback([o, slice] {
     if (o->iface.empty() && o->tap.empty()) {
       throw CliError(kExitBadArguments, "run: one of --iface or --tap is required");
     }
+    o->slice_given = slice->count() > 0;
     run(*o);
   });
 }

@@ -40,8 +40,10 @@ public:
     // PACKET_RX_RING (TPACKET_V2, 128 slots of 2 KiB, mapped once at construction): the kernel
     // writes each frame into a ring slot, and receive() takes it from there without a system call
     // (recvfrom is then only asked for the socket's error after a wake-up with an empty ring).
-    // A frame is still copied once, into the caller's buffer.
-    bool rx_ring = false;
+    // A frame is still copied once, into the caller's buffer. It also makes frame_waiting() a
+    // memory load, so frames can overtake the firmware after every slave (FrameOvertake).
+    // false: one recvfrom() per frame.
+    bool rx_ring = true;
   };
 
   // Throws LinkError: NoInterface ("no interface 'X'"), NotPermitted, InterfaceDown, BadName,
