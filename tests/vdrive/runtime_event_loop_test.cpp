@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "esc_model/registers.hpp"
+#include "tests/vdrive/loopback_line_test.hpp"
 #include "tests/vdrive/runtime_test_support.hpp"
 #include "vdrive/link/link_error.hpp"
 #include "vdrive/link/loopback_link.hpp"
@@ -31,15 +32,9 @@ std::vector<std::uint8_t> take(link::Link& master, Nanos timeout = 0) {
   return {buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(n)};
 }
 
-class VirtualLoopTest : public ::testing::Test {
+class VirtualLoopTest : public test::LoopbackLineTest {
 protected:
-  VirtualClock clock_{5 * kMs};
-  network::Network net_{std::vector<std::string>{"a6b", "ds5c1"}, clock_};
-  std::pair<std::unique_ptr<link::LoopbackLink>, std::unique_ptr<link::LoopbackLink>> ends_ =
-      link::make_loopback_pair();
-  link::Link& master_ = *ends_.first;
-  link::Link& line_ = *ends_.second;
-  LoopCounters counters_;
+  VirtualLoopTest() : LoopbackLineTest({"a6b", "ds5c1"}, 5 * kMs) {}
 };
 
 TEST_F(VirtualLoopTest, PendingFrameIsAnsweredWithoutTimeMoving) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "esc_model/registers.hpp"
+#include "tests/vdrive/loopback_line_test.hpp"
 #include "tests/vdrive/runtime_test_support.hpp"
 #include "vdrive/fault/impaired_link.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
@@ -81,22 +82,16 @@ std::vector<std::uint8_t> take(link::Link& master) {
   return {buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(n)};
 }
 
-class FrameOvertakeTest : public ::testing::Test {
+class FrameOvertakeTest : public test::LoopbackLineTest {
 protected:
+  FrameOvertakeTest() : LoopbackLineTest({"a6b", "ds5c1", "ds1000a"}, 0) {}
+
   // One loop round at `clock_`, with every timer of the three drives due (1 ms after power-on).
   void serve_round(link::Link& link) {
     clock_.set(kMs);
     ASSERT_LE(net_.next_deadline(), clock_.now()) << "the round must start with firmware timers due";
     serve_once(net_, link, clock_, clock_.now(), counters_);
   }
-
-  VirtualClock clock_{0};
-  network::Network net_{std::vector<std::string>{"a6b", "ds5c1", "ds1000a"}, clock_};
-  std::pair<std::unique_ptr<link::LoopbackLink>, std::unique_ptr<link::LoopbackLink>> ends_ =
-      link::make_loopback_pair();
-  link::Link& master_ = *ends_.first;
-  link::Link& line_ = *ends_.second;
-  LoopCounters counters_;
 };
 
 TEST_F(FrameOvertakeTest, FrameArrivingWhileFirmwareRunsGoesBackBeforeTheRestOfTheLine) {
