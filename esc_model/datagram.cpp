@@ -27,6 +27,11 @@ void DatagramView::set_circulating(bool on) {
   put16(6, v);
 }
 
+std::size_t dlpdu_datagrams(std::span<const std::uint8_t> pdu) {
+  if (pdu.size() < kEthercatHeaderSize || parse_ethercat_header(pdu).type != kFrameTypeDlpdu) return 0;
+  return validate_dlpdu(pdu);
+}
+
 std::size_t validate_dlpdu(std::span<const std::uint8_t> pdu) {
   if (pdu.size() < kEthercatHeaderSize) return 0;
   const EthercatHeader h = parse_ethercat_header(pdu);

@@ -88,4 +88,8 @@ private:
 // Only meaningful for type-1 frames.
 std::size_t validate_dlpdu(std::span<const std::uint8_t> pdu);
 
+// The datagrams of a well-formed DLPDU frame (type 1, validate_dlpdu); 0 for a frame too short
+// for the header, of another type, or malformed.
+std::size_t dlpdu_datagrams(std::span<const std::uint8_t> pdu);
+
 }  // namespace vdrive::esc

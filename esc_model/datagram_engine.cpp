@@ -29,17 +29,11 @@ constexpr std::uint16_t kWkcReadWriteWrite = 2;
 }  // namespace
 
 bool Esc::Impl::process_frame(std::span<std::uint8_t> pdu, const FrameTiming& frame_timing) {
-  if (pdu.size() < kEthercatHeaderSize) {
-    count_rx_error();
-    return false;
-  }
-  if (parse_ethercat_header(pdu).type != kFrameTypeDlpdu) return true;  // not for the ESC
-  const std::size_t count = validate_dlpdu(pdu);
-  if (count == 0) {
-    count_rx_error();
-    return false;
-  }
-  return execute_frame(pdu, count, frame_timing);
+  if (const std::size_t count = dlpdu_datagrams(pdu)) return execute_frame(pdu, count, frame_timing);
+  const bool other_type = pdu.size() >= kEthercatHeaderSize && parse_ethercat_header(pdu).type != kFrameTypeDlpdu;
+  if (other_type) return true;  // not for the ESC
+  count_rx_error();             // too short, or malformed
+  return false;
 }
 
 bool Esc::Impl::execute_frame(std::span<std::uint8_t> pdu, std::size_t count, const FrameTiming& frame_timing) {

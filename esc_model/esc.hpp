@@ -47,7 +47,7 @@ public:
   // Returns false (and counts an RX error) if the frame is malformed, i.e. a real ESC would have
   // destroyed it; the segment then drops the frame.
   bool process_frame(std::span<std::uint8_t> pdu, const FrameTiming& timing);
-  // The same for a DLPDU frame the caller has checked: `datagrams` is validate_dlpdu(pdu), not 0.
+  // The same for a DLPDU frame the caller has checked: `datagrams` is dlpdu_datagrams(pdu), not 0.
   // ESCs change a frame's data, working counters and addresses, never its lengths, so a line
   // checks it once rather than in every ESC. Returns false if this ESC destroys it (circulating).
   bool process_checked_frame(std::span<std::uint8_t> pdu, std::size_t datagrams, const FrameTiming& timing);
