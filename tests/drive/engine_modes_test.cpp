@@ -178,12 +178,9 @@ TEST_P(EngineModes, HomingOnTheCurrentPositionPresetsHomeOffset) {
 TEST_P(EngineModes, InterpolatedPositionFollowsTheRecords) {
   REQUIRE_MODE(mode::ip);
   EngineBench& b = *bench;
-  b.set(0x1600, 0, 0);
-  b.set(0x1600, 1, 0x60C10120);
-  b.set(0x1600, 0, 1);
-  b.set(0x1C12, 0, 0);
-  b.set(0x1C12, 1, 0x1600);
-  b.set(0x1C12, 0, 1);
+  MappedOutputs rx;  // what the firmware tells the drive at PreOp->SafeOp
+  rx.add(0x60C1, 1);
+  b.engine().outputs_mapped(rx);
   b.set(0x60C4, 6, 1);  // open the record buffer (closed at power-on, L2563-L2566)
   ASSERT_TRUE(b.enable(mode::ip)) << b.diag();
   const double start = b.position();

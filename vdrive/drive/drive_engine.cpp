@@ -162,6 +162,11 @@ void DriveEngine::outputs_taken(Nanos now) {
     if (h) h->on_cycle(now);
 }
 
+void DriveEngine::outputs_mapped(const MappedOutputs& outputs) {
+  for (auto& h : handlers_)
+    if (h) h->outputs_mapped(outputs);
+}
+
 bool DriveEngine::raise_alarm(std::string_view code, Nanos now) {
   const profile::AlarmSpec* a = alarms_.find(code);
   if (!a) return false;

@@ -25,6 +25,7 @@
 #include "vdrive/drive/injected_fault.hpp"
 #include "vdrive/drive/io/digital_io.hpp"
 #include "vdrive/drive/io/touch_probe.hpp"
+#include "vdrive/drive/mapped_outputs.hpp"
 #include "vdrive/drive/mode_handler.hpp"
 #include "vdrive/drive/mode_selector.hpp"
 #include "vdrive/drive/motion_limits.hpp"
@@ -63,6 +64,8 @@ public:
   void esm_changed(firmware::AlState from, firmware::AlState to, Nanos now, bool by_error = false);
   // New outputs reached the RxPDO objects (a bus cycle): cyclic modes take their set-point.
   void outputs_taken(Nanos now);
+  // A PDO mapping became effective (PreOp->SafeOp): the objects its RxPDO carries every cycle.
+  void outputs_mapped(const MappedOutputs& outputs);
   // Runs every control step due up to `now`.
   void advance_to(Nanos now, const BusState& bus);
   Nanos next_step() const { return next_step_; }

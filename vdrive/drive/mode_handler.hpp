@@ -10,6 +10,7 @@
 
 #include "vdrive/drive/drive_context.hpp"
 #include "vdrive/drive/drive_types.hpp"
+#include "vdrive/drive/mapped_outputs.hpp"
 
 namespace vdrive::drive {
 
@@ -45,6 +46,8 @@ public:
 
   // Cyclic modes: new set-points arrived from the bus (outputs taken over at SYNC0 / SM2 event).
   virtual void on_cycle(Nanos /*now*/) {}
+  // A PDO mapping became effective: `outputs` are the objects the RxPDO now carries.
+  virtual void outputs_mapped(const MappedOutputs& /*outputs*/) {}
 
   // A vendor alarm code (profile alarms.yaml) the mode detected, e.g. A6B Err27.4 for a csp
   // set-point jump; empty when none. The engine raises it (raising an active alarm is a no-op).

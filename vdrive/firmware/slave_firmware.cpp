@@ -84,6 +84,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
           [mbx](const coe::Emergency& e) { mbx->post_emergency(e); });
       drive_module::DriveModule* d = drive.get();
       pd->set_application([d](Nanos now) { d->after_outputs(now); }, [d](Nanos now) { d->before_inputs(now); });
+      pd->on_outputs_mapped([d](const pdo::ResolvedMapping& rx) { d->outputs_mapped(rx); });
       drive_ = d;
       modules.push_back(std::move(drive));
     }

@@ -5,8 +5,6 @@
 #include <cstring>
 #include <span>
 
-#include "vdrive/firmware/pdo/pdo_mapping.hpp"
-
 namespace vdrive::drive {
 
 // --- InterpolationBuffer -------------------------------------------------------------------------
@@ -98,24 +96,11 @@ InterpolatedPositionMode::InterpolatedPositionMode(const DriveContext& ctx)
   });
 }
 
-bool InterpolatedPositionMode::record_mapped_to_rxpdo() const {
-  using firmware::pdo::read_unsigned;
-  const std::uint32_t assigned = std::min<std::uint32_t>(read_unsigned(ctx_.objects, 0x1C12, 0), 255);
-  for (std::uint32_t a = 1; a <= assigned; ++a) {
-    const auto pdo = static_cast<std::uint16_t>(read_unsigned(ctx_.objects, 0x1C12, static_cast<std::uint8_t>(a)));
-    const std::uint32_t entries = std::min<std::uint32_t>(read_unsigned(ctx_.objects, pdo, 0), 255);
-    for (std::uint32_t i = 1; i <= entries; ++i) {
-      const auto entry = firmware::pdo::MappingEntry::decode(read_unsigned(ctx_.objects, pdo, static_cast<std::uint8_t>(i)));
-      if (entry.index == 0x60C1 && entry.subindex == 1) return true;
-    }
-  }
-  return false;
+void InterpolatedPositionMode::outputs_mapped(const MappedOutputs& outputs) {
+  record_in_pdo_ = outputs.contains(0x60C1, 1);
 }
 
-void InterpolatedPositionMode::on_cycle(Nanos now) {
-  // The mapping only changes in Pre-Op, when no cycles run: look again when cycles (re)start.
-  if (last_cycle_ < 0 || now - last_cycle_ > 100'000'000) record_in_pdo_ = record_mapped_to_rxpdo();
-  last_cycle_ = now;
+void InterpolatedPositionMode::on_cycle(Nanos /*now*/) {
   if (record_in_pdo_) buffer_->write(record_.get());  // a full or closed buffer drops it
 }
 

@@ -74,12 +74,12 @@ public:
   void idle(const AxisSample& s, std::uint16_t controlword) override;
   std::uint16_t status_bits() const override { return status_; }
   void on_cycle(Nanos now) override;
+  void outputs_mapped(const MappedOutputs& outputs) override;
 
   const InterpolationBuffer& buffer() const { return *buffer_; }
   static constexpr Nanos kInterpolationPeriod = 1'000'000;  // L2363, L2533-L2535
 
 private:
-  bool record_mapped_to_rxpdo() const;
   void hold(double position);
 
   const DriveContext& ctx_;
@@ -87,8 +87,7 @@ private:
   ObjectRef<std::int32_t> record_;  // 60C1h-01h
   CyclicHalt halt_;
   CyclicFollowingError following_error_;
-  bool record_in_pdo_ = false;   // 60C1h-01h is in the assigned RxPDO (checked per bus start)
-  Nanos last_cycle_ = -1;
+  bool record_in_pdo_ = false;   // 60C1h-01h is in the RxPDO mapping in effect
   bool interpolating_ = false;   // a segment runs (bit 4 on, records flowing)
   double from_ = 0.0, to_ = 0.0; // current 1 ms segment
   Nanos into_ = 0;               // time into it

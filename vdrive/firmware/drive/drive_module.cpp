@@ -65,4 +65,16 @@ void DriveModule::after_outputs(Nanos now) {
 
 void DriveModule::before_inputs(Nanos now) { catch_up(now); }
 
+static_assert(vdrive::drive::MappedOutputs::kCapacity >= pdo::kMaxMappedEntries,
+              "the drive must hear of every entry an RxPDO can map");
+
+void DriveModule::outputs_mapped(const pdo::ResolvedMapping& rx) {
+  mapped_.clear();
+  for (int i = 0; i < rx.count; ++i) {
+    const od::EntryDesc* e = rx.items[static_cast<std::size_t>(i)].entry;
+    if (e) mapped_.add(e->index, e->subindex);
+  }
+  engine_->outputs_mapped(mapped_);
+}
+
 }  // namespace vdrive::firmware::drive_module

@@ -16,6 +16,7 @@
 #include "vdrive/drive/drive_engine.hpp"
 #include "vdrive/firmware/coe/emergency.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
+#include "vdrive/firmware/pdo/pdo_mapping.hpp"
 
 namespace vdrive::firmware::drive_module {
 
@@ -34,6 +35,8 @@ public:
   // Process-data hooks (ProcessDataModule::set_application).
   void after_outputs(Nanos now);
   void before_inputs(Nanos now);
+  // The RxPDO mapping that just became effective (ProcessDataModule::on_outputs_mapped).
+  void outputs_mapped(const pdo::ResolvedMapping& rx);
 
   vdrive::drive::DriveEngine& engine() { return *engine_; }
   plant::Plant& plant() { return plant_; }
@@ -47,6 +50,7 @@ private:
   FirmwareContext& context_;
   plant::Plant plant_;
   std::unique_ptr<vdrive::drive::DriveEngine> engine_;
+  vdrive::drive::MappedOutputs mapped_;  // scratch for outputs_mapped(): no allocation there
   std::uint16_t al_error_seen_ = 0;   // the AL status code already turned into an alarm
 };
 

@@ -178,6 +178,7 @@ void ProcessDataModule::entered(AlState from, AlState to, Nanos now) {
     // The mapping becomes effective here (A6B L7008, L7172, L7311).
     rx_plan_.build(ctx_.objects, rx_map_);
     tx_plan_.build(ctx_.objects, tx_map_);
+    if (outputs_mapped_) outputs_mapped_(rx_map_);
     sm2_start_ = sms_[kOutputsSm].start;
     sm3_start_ = sms_[kInputsSm].start;
     running_ = true;

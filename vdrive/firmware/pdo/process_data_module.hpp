@@ -58,6 +58,12 @@ public:
     before_inputs_ = std::move(before_inputs);
   }
 
+  // Told the RxPDO mapping each time one becomes effective (PreOp->SafeOp), so the application
+  // learns which objects arrive cyclically without reading the mapping objects. Construction time only.
+  void on_outputs_mapped(std::function<void(const ResolvedMapping&)> listener) {
+    outputs_mapped_ = std::move(listener);
+  }
+
   bool running() const { return running_; }                // SafeOp or Op with a valid mapping
   bool outputs_valid() const { return outputs_valid_; }    // Op and outputs received since
   std::uint16_t output_bytes() const { return rx_plan_.bytes(); }
@@ -89,6 +95,7 @@ private:
   bool cycle_by_sync_ = false;
   bool new_outputs_ = false;   // DC mode: the master wrote SM2 since the last SYNC0
   std::function<void(Nanos)> after_outputs_, before_inputs_;
+  std::function<void(const ResolvedMapping&)> outputs_mapped_;
 };
 
 }  // namespace vdrive::firmware::pdo
