@@ -11,7 +11,6 @@ packages=(
   libtinyxml2-dev
   fastddsgen libfastrtps-dev libfastcdr-dev
   gnuplot-nox libpng-dev
-  libxdp-dev libbpf-dev
   iproute2 tshark procps
   python3 python3-yaml
 )

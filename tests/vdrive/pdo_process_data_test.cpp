@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "pdo_test_bench.hpp"
@@ -70,6 +71,26 @@ TEST_F(A6bProcessData, OutputsReachTheObjectsOnlyInOp) {
   EXPECT_EQ(get(b.value(0x607A, 0)), 0x12345678u);
   EXPECT_EQ(get(b.value(0x60B8, 0)), 0x0011u);
   EXPECT_TRUE(b.module.outputs_valid());
+}
+
+// The application (the CiA 402 drive) is told which objects the RxPDO carries when the mapping
+// becomes effective, so it never reads 1C12h and the mapping objects itself.
+TEST_F(A6bProcessData, TheApplicationHearsTheOutputMappingAtSafeOp) {
+  std::vector<std::pair<std::uint16_t, std::uint8_t>> heard;
+  int calls = 0;
+  b.module.on_outputs_mapped([&](const ResolvedMapping& rx) {
+    ++calls;
+    heard.clear();
+    for (int i = 0; i < rx.count; ++i)
+      if (const od::EntryDesc* e = rx.items[static_cast<std::size_t>(i)].entry) heard.emplace_back(e->index, e->subindex);
+  });
+  b.mailbox_layout();
+  b.go(kPreOp);
+  EXPECT_EQ(calls, 0) << "no mapping is in effect before SafeOp";
+  to_safeop();
+  EXPECT_EQ(calls, 1);
+  const std::vector<std::pair<std::uint16_t, std::uint8_t>> factory{{0x6040, 0}, {0x6060, 0}, {0x607A, 0}, {0x60B8, 0}};
+  EXPECT_EQ(heard, factory);
 }
 
 TEST_F(A6bProcessData, InputsAppearInTheFrameFromSafeOp) {
