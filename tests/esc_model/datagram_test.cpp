@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "esc_model/datagram.hpp"
-#include "esc_test_util.hpp"
+#include "tests/esc_model/esc_test_util.hpp"
 
 namespace vdrive::esc::test {
 namespace {

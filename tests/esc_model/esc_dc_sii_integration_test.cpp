@@ -2,7 +2,7 @@
 // into the AL event register, EEPROM reload into the ESC registers.
 #include <gtest/gtest.h>
 
-#include "esc_test_util.hpp"
+#include "tests/esc_model/esc_test_util.hpp"
 
 namespace vdrive::esc::test {
 namespace {

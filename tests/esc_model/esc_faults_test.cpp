@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "esc_model/esc_faults.hpp"
-#include "esc_test_util.hpp"
+#include "tests/esc_model/esc_test_util.hpp"
 
 namespace vdrive::esc::test {
 namespace {

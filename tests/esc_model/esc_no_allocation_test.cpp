@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <new>
 
-#include "esc_test_util.hpp"
+#include "tests/esc_model/esc_test_util.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};

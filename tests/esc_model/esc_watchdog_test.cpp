@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "esc_model/watchdog.hpp"
-#include "esc_test_util.hpp"
+#include "tests/esc_model/esc_test_util.hpp"
 
 namespace vdrive::esc::test {
 namespace {

@@ -1,7 +1,7 @@
 // Register reset values, per-side write permissions, side effects, EEPROM load, DL status.
 #include <gtest/gtest.h>
 
-#include "esc_test_util.hpp"
+#include "tests/esc_model/esc_test_util.hpp"
 
 namespace vdrive::esc::test {
 namespace {

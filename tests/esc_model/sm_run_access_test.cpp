@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "esc_test_util.hpp"
+#include "tests/esc_model/esc_test_util.hpp"
 
 namespace vdrive::esc::test {
 namespace {

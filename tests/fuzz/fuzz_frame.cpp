@@ -17,7 +17,7 @@
 #include "common/clock.hpp"
 #include "esc_model/esc.hpp"
 #include "esc_model/sii_eeprom.hpp"
-#include "fuzz/fuzz_records.hpp"
+#include "tests/fuzz/fuzz_records.hpp"
 
 namespace {
 

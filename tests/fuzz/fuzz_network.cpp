@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/clock.hpp"
-#include "fuzz/fuzz_records.hpp"
+#include "tests/fuzz/fuzz_records.hpp"
 #include "vdrive/network/network.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -3,7 +3,7 @@
 // client's repeat request or, lost again, ends in its timeout; a duplicated reply is dropped by
 // its counter; an injected abort code arrives as that SdoAbort. (The wrong toggle bit needs a
 // segmented transfer, which none of the three products' dictionaries can make: it is tested on
-// the mailbox bench with a test dictionary, tests/vdrive/mailbox_faults_test.cpp.)
+// the mailbox bench with a test dictionary, tests/firmware/mailbox/mailbox_faults_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <string>

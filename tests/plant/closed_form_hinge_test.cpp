@@ -9,7 +9,7 @@
 #include <functional>
 
 #include "plant/plant.hpp"
-#include "plant_test_util.hpp"
+#include "tests/plant/plant_test_util.hpp"
 
 namespace vdrive::plant {
 namespace {

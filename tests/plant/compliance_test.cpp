@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "plant/plant.hpp"
-#include "plant_test_util.hpp"
+#include "tests/plant/plant_test_util.hpp"
 
 namespace vdrive::plant {
 namespace {

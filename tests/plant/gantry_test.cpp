@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "plant/plant.hpp"
-#include "plant_test_util.hpp"
+#include "tests/plant/plant_test_util.hpp"
 
 namespace vdrive::plant {
 namespace {

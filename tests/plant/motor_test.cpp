@@ -6,7 +6,7 @@
 
 #include "plant/plant.hpp"
 #include "plant/thermal_network.hpp"
-#include "plant_test_util.hpp"
+#include "tests/plant/plant_test_util.hpp"
 
 namespace vdrive::plant {
 namespace {

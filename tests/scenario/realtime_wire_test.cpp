@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "esc_model/registers.hpp"
-#include "tests/vdrive/runtime_test_support.hpp"
+#include "tests/support/runtime_test_support.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/link/loopback_link.hpp"
 #include "vdrive/network/network.hpp"

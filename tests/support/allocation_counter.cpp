@@ -1,0 +1,21 @@
+// The counting global operator new of tests/support/allocation_counter.hpp. It only counts, so
+// every other test in the binary behaves as it would without it.
+#include "tests/support/allocation_counter.hpp"
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+long vdrive::test::allocation_count() { return g_allocations.load(std::memory_order_relaxed); }
