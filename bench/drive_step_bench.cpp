@@ -1,4 +1,4 @@
-// Cost of the CiA 402 drive per control step (issue 5): one DriveEngine with its product's default
+// Cost of the CiA 402 drive per control step: one DriveEngine with its product's default
 // plant, enabled in csp and following a moving set-point, so every part runs (PDS, mode, limits,
 // supervision, I/O, touch probe, servo or stepper loop, one plant step). One iteration = one
 // control step (125 us of drive time). Results and method: docs/performance.md.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Capacity search (issue 9): for each bus cycle T (1 ms, 250 us, 125 us), the largest number of
+# Capacity search: for each bus cycle T (1 ms, 250 us, 125 us), the largest number of
 # drives one core carries with no missed sync deadline. Two stages per T:
 #   1. virtual time (bench_capacity without --realtime, VCYCLES cycles per trial): N doubles from
 #      1 while the 99.9th percentile of the per-cycle CPU time stays under T, then bisection

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak (issue 9): `vdrive run` serves a6b, ds5c1, ds1000a in a network namespace on one end of a
+# Soak: `vdrive run` serves a6b, ds5c1, ds1000a in a network namespace on one end of a
 # veth pair; `vdrive-master op --dc --cycle-us 1000 --sine --seconds SECONDS` on the other end takes
 # the line to Op with distributed clocks and moves every drive in csp for SECONDS at 1 kHz.
 # vdrive's resident memory (VmRSS) is sampled every INTERVAL seconds. At the end it checks:

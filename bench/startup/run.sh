@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Start-up time (issue 9, part 4): how long a master takes to bring a line of three drives
+# Start-up time: how long a master takes to bring a line of three drives
 # (a6b, ds5c1, ds1000a, served by `vdrive run` in a network namespace on one end of a veth pair it
 # makes itself) from power-on state to Op. One command:
 #

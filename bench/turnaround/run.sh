@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Frame turnaround benchmark (issue 9), one command: makes its own network namespace and veth pair,
+# Frame turnaround benchmark, one command: makes its own network namespace and veth pair,
 # then for every line size N measures, with the same master (bench_turnaround_master) and the same
 # sample count, at 1 kHz and back-to-back:
 #   vdrive   `vdrive run` serving N drives (products a6b, ds5c1, ds1000a in turn), taken to Op

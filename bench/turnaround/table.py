@@ -2,7 +2,7 @@
 """Side-by-side table of bench/turnaround results (one JSON object per line, as
 bench_turnaround_master --json writes them): per line size and rate, each responder's
 round-trip percentiles in microseconds, and vdrive's ratios to the echo floor and to KickCAT.
-Targets (issue 9): vdrive p50 <= 1.3 x echo p50, p99.9 <= 2 x echo p99.9, below KickCAT's p50 and p99."""
+Targets: vdrive p50 <= 1.3 x echo p50, p99.9 <= 2 x echo p99.9, below KickCAT's p50 and p99."""
 import json
 import sys
 

@@ -1,4 +1,4 @@
-// bench_turnaround_master: the measuring end of the frame-turnaround benchmark (issue 9). On one
+// bench_turnaround_master: the measuring end of the frame-turnaround benchmark. On one
 // end of a veth pair it sends a master's per-cycle frame (cycle_frame.hpp) to whatever answers on
 // the other end and records each round trip, send -> matching reply, on CLOCK_MONOTONIC.
 //

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Virtual-time speed (issue 9): simulated seconds per wall second for 1 and 8 drives in csp with
+# Virtual-time speed: simulated seconds per wall second for 1 and 8 drives in csp with
 # plants, DC at 1 ms (bench_virtual_speed), with the machine and load; then, if valgrind is
 # installed, the instructions per 1 ms cycle of one A6B (callgrind, the timed part only): a count
 # that does not depend on the load, for before/after comparisons of optimisations.

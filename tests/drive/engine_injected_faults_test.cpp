@@ -1,4 +1,4 @@
-// Injected drive faults (DriveEngine::set_injected_fault, issue 7) on the whole drive, for every
+// Injected drive faults (DriveEngine::set_injected_fault) on the whole drive, for every
 // product and every fault the product has an alarm for: from Operation enabled the cause brings the
 // product's 603Fh value (manual line beside each), exactly one emergency and Fault; a fault reset
 // while the cause lasts is refused; once the cause is gone the product's clearing procedure works

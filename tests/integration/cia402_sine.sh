@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 5, "Must show", as a new user would): `vdrive run` serves a6b, ds5c1, ds1000a
+# Integration (as a new user would): `vdrive run` serves a6b, ds5c1, ds1000a
 # on one end of a veth pair; `vdrive-master op --dc --cycle-us 1000 --sine` on the other end maps
 # each drive for cyclic synchronous position, enables it through the CiA 402 state machine and
 # commands a 0.5 Hz sine of a quarter of a motor revolution for 4 s. Every drive must report "ok":

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 7 item 5): runtime fault control while `vdrive run` serves a real master.
+# Integration: runtime fault control while `vdrive run` serves a real master.
 # vdrive serves a6b, ds5c1, ds1000a in a namespace on a veth end with its control socket at
 # $WORK/ctl/line.sock; `vdrive-master op` runs 3000 cycles of 1 ms on the other end. Once the
 # master is in Op, `vdrive fault inject drop --probability 1 --duration 300ms` cuts the wire:

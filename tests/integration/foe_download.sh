@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 10): FoE firmware download to the DS1000A-EC with the project master, the way
+# Integration: FoE firmware download to the DS1000A-EC with the project master, the way
 # a field engineer updates the drive (docs/foe.md). `vdrive run --drive ds1000a` inside a network
 # namespace on one end of a veth pair, `vdrive-master foe-write` on the other:
 #   - 100Ah reads the factory "V1.00/1.00" on a fresh drive (its flash: $WORK/state);

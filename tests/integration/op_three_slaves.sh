@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 4, "Must show"): `vdrive run` serves a6b, ds5c1, ds1000a inside a network
+# Integration: `vdrive run` serves a6b, ds5c1, ds1000a inside a network
 # namespace on one end of a veth pair; `vdrive-master op --dc --cycle-us 1000 --cycles 10000` on
 # the other end takes the line to Op with distributed clocks (1 ms is a cycle every product
 # supports: A6B 125 us-10 ms, DS5C1 and DS1000A-EC from 1 ms) and must run 10,000 cycles with zero

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 9, part 7): `vdrive run --busy-poll-us 200 --cpu 0` (receive ring and time
+# Integration: `vdrive run --busy-poll-us 200 --cpu 0` (receive ring and time
 # slice by default), and then `vdrive run --no-rx-ring --slice-us 200` (recvfrom, frames
 # overtaking the firmware through rationed poll() peeks), serve a6b, ds5c1, ds1000a as before —
 # `vdrive-master op --dc` runs 2,000 cycles with zero wrong working counters against each — and

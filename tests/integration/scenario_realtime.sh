@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 7, "Must show"): the scenario library in real time.
+# Integration: the scenario library in real time.
 #  1. `vdrive scenario run scenarios/ --veth` inside a network namespace made here: the built-in
 #     master and the line on a veth pair vdrive makes there, on the monotonic clock. Every scenario
 #     passes; the JUnit report says so; every capture (--pcap) decodes in tshark without

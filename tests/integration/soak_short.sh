@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 9, soak, shortened for CI): bench/soak/run.sh for 45 s — `vdrive run` with
+# Integration (shortened for CI): bench/soak/run.sh for 45 s — `vdrive run` with
 # a6b, ds5c1, ds1000a in a network namespace behind a veth pair, `vdrive-master op --dc --sine` at
 # 1 kHz on the other end — must end with no lost frames (master and vdrive counters), no wrong
 # working counters, every slave in Op in every cycle, and vdrive's resident memory no more than

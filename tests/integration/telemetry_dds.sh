@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 8, parts 1-2): DDS telemetry between processes. vdrive serves a6b and ds5c1
+# Integration: DDS telemetry between processes. vdrive serves a6b and ds5c1
 # with --telemetry at 100 Hz in its own namespace (lo up: Fast DDS discovers over loopback UDP and
 # carries data over shared memory) on a veth end; vdrive-master runs a csp sine from the other
 # end. A second process, `vdrive telemetry --csv --events-csv`, subscribes in the same namespace

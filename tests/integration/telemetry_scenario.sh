@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Integration (issue 8): DDS telemetry while a scenario runs. `vdrive scenario run --veth
+# Integration: DDS telemetry while a scenario runs. `vdrive scenario run --veth
 # --telemetry --telemetry-rate 100` runs data/telemetry_scenario.yaml in real time in its own
 # namespace (lo up for DDS discovery); a second process, `vdrive telemetry --csv`, subscribes
 # until the fault request has been answered (then Ctrl-C: a request client's DDS discovery can

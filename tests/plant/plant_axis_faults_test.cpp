@@ -1,4 +1,4 @@
-// Machine faults of an axis (Plant::set_axis_faults, issue 7): a jam holds the load where it
+// Machine faults of an axis (Plant::set_axis_faults): a jam holds the load where it
 // seized, an obstacle stops it at the given position from the side it came (fault::end_stop), a
 // load change scales a = T/J and adds a force, a failed brake does not hold. Expected values are
 // computed here from the description.

@@ -1,4 +1,4 @@
-// The rest of each product as data (issue 3 item 2): sync, PDO rules, modes, homing, touch probe,
+// The rest of each product as data: sync, PDO rules, modes, homing, touch probe,
 // alarms and motors, spot-checked against the manuals. Each expectation cites the manual line that
 // gives the value (a6b: panasonic-minas-a6b-ethercat-spec.zh.txt, ds5c1: xinje-ds5c1-user-manual.zh.md,
 // ds1000a: ds1000a-ec-manual.ja.txt, all in /work/shared/seeds/).

@@ -1,4 +1,4 @@
-// Steady state allocates nothing (architecture rule; issue 9): a line of the three products in Op
+// Steady state allocates nothing (architecture rule): a line of the three products in Op
 // with DC at 1 ms, every drive enabled in cyclic synchronous position and following a sine with
 // its default plant, the project master's CiA 402 program exchanging process data every cycle
 // (LRW + FRMW of the DC reference time + BRD AL status). Over 10,000 cycles after warm-up, the
