@@ -176,7 +176,7 @@ TEST_P(MailboxOnProduct, Sm1EventIsUnmaskedOnlyWhileAMessageWaits) {
 TEST_P(MailboxOnProduct, EmergenciesFromInitAreSentOnPreOpNewestEight) {
   Bench b(load(GetParam()));
   for (std::uint16_t i = 1; i <= 10; ++i) {
-    coe::Emergency e;
+    ecat::coe::Emergency e;
     e.error_code = static_cast<std::uint16_t>(0xFF00 + i);
     e.error_register = 0x80;
     e.data[0] = static_cast<std::uint8_t>(i);

@@ -105,13 +105,13 @@ TEST(PdoWatchdogSetting, A6bNeedsTwoCyclesOrTwoMillisecondsInFreeRun) {
 }
 
 TEST(PdoMappingEntry, DecodesIndexSubindexBits) {
-  const MappingEntry e = MappingEntry::decode(0x60FE0120);  // DS1000A 1600h 60FE:01 32 bit
+  const ecat::PdoMappingEntry e = ecat::PdoMappingEntry::decode(0x60FE0120);  // DS1000A 1600h 60FE:01 32 bit
   EXPECT_EQ(e.index, 0x60FE);
   EXPECT_EQ(e.subindex, 0x01);
   EXPECT_EQ(e.bits, 0x20);
   EXPECT_FALSE(e.is_gap());
-  EXPECT_EQ(MappingEntry::encode(0x6040, 0, 16), 0x60400010u);
-  EXPECT_TRUE(MappingEntry::decode(0x00000008).is_gap());
+  EXPECT_EQ(ecat::PdoMappingEntry::encode(0x6040, 0, 16), 0x60400010u);
+  EXPECT_TRUE(ecat::PdoMappingEntry::decode(0x00000008).is_gap());
 }
 
 TEST(PdoLimits, ManualsLimits) {

@@ -105,7 +105,7 @@ bool InterpolatedPositionMode::record_mapped_to_rxpdo() const {
     const auto pdo = static_cast<std::uint16_t>(read_unsigned(ctx_.objects, 0x1C12, static_cast<std::uint8_t>(a)));
     const std::uint32_t entries = std::min<std::uint32_t>(read_unsigned(ctx_.objects, pdo, 0), 255);
     for (std::uint32_t i = 1; i <= entries; ++i) {
-      const auto entry = firmware::pdo::MappingEntry::decode(read_unsigned(ctx_.objects, pdo, static_cast<std::uint8_t>(i)));
+      const auto entry = ecat::PdoMappingEntry::decode(read_unsigned(ctx_.objects, pdo, static_cast<std::uint8_t>(i)));
       if (entry.index == 0x60C1 && entry.subindex == 1) return true;
     }
   }
