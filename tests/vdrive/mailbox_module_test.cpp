@@ -71,7 +71,7 @@ TEST_P(MailboxOnProduct, NoMailboxInInit) {
   ASSERT_EQ(b.send(message(kCoE, 1, vendor_id_request())), 1);
   EXPECT_FALSE(b.receive().has_value());
   // Entering PreOp serves the request that waited in SM0.
-  b.request_state(AlState::PreOp);
+  b.request_state(ecat::AlState::PreOp);
   auto r = b.receive();
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(u32_at(*r, 12), b.product.identity.vendor_id);
@@ -201,9 +201,9 @@ TEST_P(MailboxOnProduct, BackToInitForgetsTheExchange) {
   Bench b(load(GetParam()));
   b.to_preop();
   ASSERT_EQ(b.send(message(kCoE, 5, vendor_id_request())), 1);
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   EXPECT_EQ(b.module.pending_replies(), 0u);
-  b.request_state(AlState::PreOp);
+  b.request_state(ecat::AlState::PreOp);
   b.receive();  // whatever SM1 still held
   ASSERT_EQ(b.send(message(kCoE, 5, vendor_id_request())), 1);
   EXPECT_TRUE(b.receive().has_value()) << "the counter starts afresh after Init";
