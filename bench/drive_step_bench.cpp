@@ -31,7 +31,7 @@ void BM_DriveStepCsp(benchmark::State& state, const std::string& id) {
   drive::BusState bus;
   bus.esm_init = false;
   bus.remote = true;
-  using vdrive::firmware::AlState;
+  using vdrive::ecat::AlState;
   engine.power_on(0);
   engine.esm_changed(AlState::Init, AlState::PreOp, 0);
   engine.esm_changed(AlState::PreOp, AlState::SafeOp, 0);

@@ -10,7 +10,7 @@ constexpr int kHeaderTypeShift = 12;
 EthercatHeader parse_ethercat_header(std::span<const std::uint8_t> pdu) {
   EthercatHeader h;
   if (pdu.size() < kEthercatHeaderSize) return h;
-  const auto raw = static_cast<std::uint16_t>(pdu[0] | (pdu[1] << 8));
+  const std::uint16_t raw = ecat::get_le16(pdu, 0);
   h.length = raw & kHeaderLengthMask;
   h.type = static_cast<std::uint8_t>(raw >> kHeaderTypeShift);
   return h;
@@ -42,7 +42,7 @@ std::size_t validate_dlpdu(std::span<const std::uint8_t> pdu) {
   std::size_t count = 0;
   for (;;) {
     if (end - at < kDatagramHeaderSize + kWkcSize) return 0;
-    const auto len_field = static_cast<std::uint16_t>(pdu[at + 6] | (pdu[at + 7] << 8));
+    const std::uint16_t len_field = ecat::get_le16(pdu, at + 6);
     const std::size_t len = len_field & kMaxDatagramLength;
     const std::size_t size = kDatagramHeaderSize + len + kWkcSize;
     if (size > end - at) return 0;

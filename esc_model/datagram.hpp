@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <span>
 
+#include "ethercat/little_endian.hpp"
+
 namespace vdrive::esc {
 
 enum class Command : std::uint8_t {
@@ -73,13 +75,8 @@ public:
   static constexpr std::uint16_t kMoreBit = 1u << 15;
 
 private:
-  std::uint16_t le16(std::size_t at) const {
-    return static_cast<std::uint16_t>(b_[at] | (b_[at + 1] << 8));
-  }
-  void put16(std::size_t at, std::uint16_t v) {
-    b_[at] = static_cast<std::uint8_t>(v);
-    b_[at + 1] = static_cast<std::uint8_t>(v >> 8);
-  }
+  std::uint16_t le16(std::size_t at) const { return ecat::get_le16(b_, at); }
+  void put16(std::size_t at, std::uint16_t v) { ecat::put_le16(b_, at, v); }
   std::span<std::uint8_t> b_;
 };
 

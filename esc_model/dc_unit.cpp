@@ -6,50 +6,48 @@
 #include <limits>
 
 #include "common/round.hpp"
+#include "ethercat/little_endian.hpp"
+#include "ethercat/registers.hpp"
 
 namespace vdrive::esc {
 namespace {
 
-// Offsets inside the 0x0900 window.
-constexpr std::uint16_t kReceiveTimePort0 = 0x00;
-constexpr std::uint16_t kSystemTime = 0x10;
-constexpr std::uint16_t kReceiveTimeEpu = 0x18;
-constexpr std::uint16_t kSystemTimeOffset = 0x20;
-constexpr std::uint16_t kSystemTimeDelay = 0x28;
-constexpr std::uint16_t kSystemTimeDifference = 0x2C;
-constexpr std::uint16_t kSpeedCounterStart = 0x30;
-constexpr std::uint16_t kSpeedCounterDiff = 0x32;
-constexpr std::uint16_t kDifferenceFilterDepth = 0x34;
-constexpr std::uint16_t kSpeedFilterDepth = 0x35;
-constexpr std::uint16_t kCyclicUnitControl = 0x80;
-constexpr std::uint16_t kActivation = 0x81;
-constexpr std::uint16_t kPulseLength = 0x82;
-constexpr std::uint16_t kActivationStatus = 0x84;
-constexpr std::uint16_t kSync0Status = 0x8E;
-constexpr std::uint16_t kSync1Status = 0x8F;
-constexpr std::uint16_t kStartTime = 0x90;
-constexpr std::uint16_t kNextSync1 = 0x98;
-constexpr std::uint16_t kSync0CycleTime = 0xA0;
-constexpr std::uint16_t kSync1CycleTime = 0xA4;
-constexpr std::uint16_t kLatch0Control = 0xA8;
-constexpr std::uint16_t kLatch1Control = 0xA9;
+// Offsets inside the DC window: regs_ holds 0x0900-0x09FF.
+constexpr std::uint16_t window(ecat::reg::Addr address) {
+  return static_cast<std::uint16_t>(address - ecat::reg::kDcFirst);
+}
+constexpr std::uint16_t kReceiveTimePort0 = window(ecat::reg::kDcReceiveTimePort0);
+constexpr std::uint16_t kSystemTime = window(ecat::reg::kDcSystemTime);
+constexpr std::uint16_t kReceiveTimeEpu = window(ecat::reg::kDcReceiveTimeEpu);
+constexpr std::uint16_t kSystemTimeOffset = window(ecat::reg::kDcSystemTimeOffset);
+constexpr std::uint16_t kSystemTimeDelay = window(ecat::reg::kDcSystemTimeDelay);
+constexpr std::uint16_t kSystemTimeDifference = window(ecat::reg::kDcSystemTimeDifference);
+constexpr std::uint16_t kSpeedCounterStart = window(ecat::reg::kDcSpeedCounterStart);
+constexpr std::uint16_t kSpeedCounterDiff = window(ecat::reg::kDcSpeedCounterDiff);
+constexpr std::uint16_t kDifferenceFilterDepth = window(ecat::reg::kDcDifferenceFilterDepth);
+constexpr std::uint16_t kSpeedFilterDepth = window(ecat::reg::kDcSpeedFilterDepth);
+constexpr std::uint16_t kCyclicUnitControl = window(ecat::reg::kDcCyclicUnitControl);
+constexpr std::uint16_t kActivation = window(ecat::reg::kDcActivation);
+constexpr std::uint16_t kPulseLength = window(ecat::reg::kDcPulseLength);
+constexpr std::uint16_t kActivationStatus = window(ecat::reg::kDcActivationStatus);
+constexpr std::uint16_t kSync0Status = window(ecat::reg::kDcSync0Status);
+constexpr std::uint16_t kSync1Status = window(ecat::reg::kDcSync1Status);
+constexpr std::uint16_t kStartTime = window(ecat::reg::kDcStartTime);
+constexpr std::uint16_t kNextSync1 = window(ecat::reg::kDcNextSync1);
+constexpr std::uint16_t kSync0CycleTime = window(ecat::reg::kDcSync0CycleTime);
+constexpr std::uint16_t kSync1CycleTime = window(ecat::reg::kDcSync1CycleTime);
+constexpr std::uint16_t kLatch0Control = window(ecat::reg::kDcLatch0Control);
+constexpr std::uint16_t kLatch1Control = window(ecat::reg::kDcLatch1Control);
 
-// 0x0980 bits: which side owns the sync out unit and the latch units.
-constexpr std::uint8_t kSyncOutPdi = 0x01;
-constexpr std::uint8_t kLatch0Pdi = 0x10;
-constexpr std::uint8_t kLatch1Pdi = 0x20;
-// 0x0981 bits
-constexpr std::uint8_t kCyclicOperation = 0x01;
-constexpr std::uint8_t kSync0Enable = 0x02;
-constexpr std::uint8_t kSync1Enable = 0x04;
-constexpr std::uint8_t kAutoActivation = 0x08;
-constexpr std::uint8_t kStartTimeExtension = 0x10;
-constexpr std::uint8_t kPlausibilityCheck = 0x20;
-constexpr std::uint8_t kNearFuture2s = 0x40;
-// 0x0984 bits
-constexpr std::uint8_t kSync0Pending = 0x01;
-constexpr std::uint8_t kSync1Pending = 0x02;
-constexpr std::uint8_t kStartTimeImplausible = 0x04;
+using namespace ecat::reg::dc_cyclic_unit_control;
+using namespace ecat::reg::dc_activation_status;
+constexpr std::uint8_t kCyclicOperation = ecat::reg::dc_activation::kCyclicOperation;
+constexpr std::uint8_t kSync0Enable = ecat::reg::dc_activation::kSync0;
+constexpr std::uint8_t kSync1Enable = ecat::reg::dc_activation::kSync1;
+constexpr std::uint8_t kAutoActivation = ecat::reg::dc_activation::kAutoActivation;
+constexpr std::uint8_t kStartTimeExtension = ecat::reg::dc_activation::kStartTimeExtension;
+constexpr std::uint8_t kPlausibilityCheck = ecat::reg::dc_activation::kPlausibilityCheck;
+constexpr std::uint8_t kNearFuture2s = ecat::reg::dc_activation::kNearFuture2s;
 
 constexpr std::uint16_t kSpeedCounterStartReset = 0x1000;
 constexpr std::uint16_t kSpeedCounterMinDelta = 0x7F;
@@ -61,15 +59,8 @@ constexpr std::int64_t kFllWindowUnit = 250;
 constexpr double kFllGain = 0.5;
 constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 
-std::uint64_t get_le(const std::uint8_t* p, int bytes) {
-  std::uint64_t v = 0;
-  for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | p[i];
-  return v;
-}
-
-void put_le(std::uint8_t* p, std::uint64_t v, int bytes) {
-  for (int i = 0; i < bytes; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
+using ecat::get_le;
+using ecat::put_le;
 
 bool overlaps(std::uint16_t offset, std::size_t len, std::uint16_t first, std::uint16_t size) {
   return offset < first + size && first < offset + len;

@@ -12,7 +12,7 @@
 // Threading: single-threaded by design; the caller (one event loop) owns the ESC. No method
 // allocates after construction.
 //
-// Implementation map: registers.hpp (register map), datagram.* (frame layout), esc_impl.hpp
+// Implementation map: ethercat/registers.hpp (register map), datagram.* (frame layout), esc_impl.hpp
 // (private state and how the .cpp files divide the work), fmmu.*, sync_manager.*, watchdog.*.
 // Known simplifications: the circulating bit is handled only for a port 0 closed by DL control;
 // SYNC0/1 always reach the AL event register (0x0220 bits 2/3) since the PDI has no SYNC pins;

@@ -17,12 +17,16 @@
 #include "esc_model/esc.hpp"
 #include "esc_model/esc_config.hpp"
 #include "esc_model/fmmu.hpp"
-#include "esc_model/registers.hpp"
 #include "esc_model/sii_eeprom.hpp"
 #include "esc_model/sync_manager.hpp"
 #include "esc_model/watchdog.hpp"
+#include "ethercat/little_endian.hpp"
+#include "ethercat/registers.hpp"
 
 namespace vdrive::esc {
+
+// The chip's own sources name registers on nearly every line; the short name keeps them readable.
+namespace reg = ecat::reg;
 
 struct Esc::Impl final : PhysicalPort {
   Impl(const EscConfig& config, const Clock& clock);
@@ -142,18 +146,14 @@ struct Esc::Impl final : PhysicalPort {
   std::uint16_t logical(std::uint32_t address, std::span<std::uint8_t> data, bool do_read,
                         bool do_write);
 
-  // ---- little-endian register helpers on mem (no side effects)
-  std::uint16_t get16(std::uint16_t a) const {
-    return static_cast<std::uint16_t>(mem[a] | (mem[a + 1] << 8));
-  }
+  // ---- little-endian register helpers on mem (no side effects); 32-bit accesses wrap at 64 KiB
+  // like the address space
+  std::uint16_t get16(std::uint16_t a) const { return ecat::get_le16(mem, a); }
   std::uint32_t get32(std::uint16_t a) const {
     return static_cast<std::uint32_t>(get16(a)) |
            (static_cast<std::uint32_t>(get16(static_cast<std::uint16_t>(a + 2))) << 16);
   }
-  void put16(std::uint16_t a, std::uint16_t v) {
-    mem[a] = static_cast<std::uint8_t>(v);
-    mem[a + 1] = static_cast<std::uint8_t>(v >> 8);
-  }
+  void put16(std::uint16_t a, std::uint16_t v) { ecat::put_le16(mem, a, v); }
   void put32(std::uint16_t a, std::uint32_t v) {
     put16(a, static_cast<std::uint16_t>(v));
     put16(static_cast<std::uint16_t>(a + 2), static_cast<std::uint16_t>(v >> 16));

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/little_endian.hpp"
+#include "ethercat/registers.hpp"
 
 namespace vdrive::esc {
 
@@ -32,17 +33,13 @@ bool PhysicalPort::write_bytes(std::uint16_t address, std::span<const std::uint8
 }
 
 Fmmu Fmmu::decode(std::span<const std::uint8_t, 16> r) {
-  namespace f = reg::fmmu;
+  namespace f = ecat::reg::fmmu;
   Fmmu m;
-  m.logical_start = static_cast<std::uint32_t>(r[f::kLogicalStart]) |
-                    (static_cast<std::uint32_t>(r[f::kLogicalStart + 1]) << 8) |
-                    (static_cast<std::uint32_t>(r[f::kLogicalStart + 2]) << 16) |
-                    (static_cast<std::uint32_t>(r[f::kLogicalStart + 3]) << 24);
-  m.length = static_cast<std::uint16_t>(r[f::kLength] | (r[f::kLength + 1] << 8));
+  m.logical_start = ecat::get_le32(r, f::kLogicalStart);
+  m.length = ecat::get_le16(r, f::kLength);
   m.logical_start_bit = r[f::kLogicalStartBit] & kBitIndexMask;
   m.logical_stop_bit = r[f::kLogicalStopBit] & kBitIndexMask;
-  m.physical_start =
-      static_cast<std::uint16_t>(r[f::kPhysicalStart] | (r[f::kPhysicalStart + 1] << 8));
+  m.physical_start = ecat::get_le16(r, f::kPhysicalStart);
   m.physical_start_bit = r[f::kPhysicalStartBit] & kBitIndexMask;
   m.readable = (r[f::kType] & f::kTypeRead) != 0;
   m.writable = (r[f::kType] & f::kTypeWrite) != 0;

@@ -47,7 +47,7 @@ void Esc::Impl::after_register_write(Side side, std::uint32_t lo, std::uint32_t 
       set_al_event(reg::al_event::kAlControl, true);
       if (mem[reg::kEscConfiguration] & reg::kEscConfigDeviceEmulation) {
         // Device emulation: no firmware, the ESC answers the requested state itself.
-        put16(reg::kAlStatus, get16(reg::kAlControl) & 0x000F);
+        put16(reg::kAlStatus, get16(reg::kAlControl) & reg::kAlStateBits);
         set_ecat_event(reg::ecat_event::kAlStatus, true);
       }
     }

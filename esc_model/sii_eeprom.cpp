@@ -5,30 +5,24 @@
 #include <cstdint>
 #include <utility>
 
+#include "ethercat/little_endian.hpp"
+#include "ethercat/registers.hpp"
+
 namespace vdrive::esc {
 namespace {
 
-// Offsets inside the 0x0500 window.
-constexpr std::uint16_t kConfig = 0x0;
-constexpr std::uint16_t kPdiAccess = 0x1;
-constexpr std::uint16_t kControlLow = 0x2;
-constexpr std::uint16_t kControlHigh = 0x3;
-constexpr std::uint16_t kAddress = 0x4;
-constexpr std::uint16_t kData = 0x8;
+// Offsets inside the SII window: regs_ holds 0x0500-0x050F.
+constexpr std::uint16_t window(ecat::reg::Addr address) {
+  return static_cast<std::uint16_t>(address - ecat::reg::kSiiFirst);
+}
+constexpr std::uint16_t kConfig = window(ecat::reg::kSiiConfig);
+constexpr std::uint16_t kPdiAccess = window(ecat::reg::kSiiPdiAccess);
+constexpr std::uint16_t kControlLow = window(ecat::reg::kSiiControlStatus);
+constexpr std::uint16_t kControlHigh = kControlLow + 1;
+constexpr std::uint16_t kAddress = window(ecat::reg::kSiiAddress);
+constexpr std::uint16_t kData = window(ecat::reg::kSiiData);
 
-// 0x0500 bits
-constexpr std::uint8_t kOfferToPdi = 0x01;
-constexpr std::uint8_t kForceEcat = 0x02;
-// 0x0502-03 bits
-constexpr std::uint16_t kWriteEnable = 1u << 0;
-constexpr std::uint16_t kReads8Bytes = 1u << 6;
-constexpr std::uint16_t kTwoAddressBytes = 1u << 7;
-constexpr std::uint16_t kCommandMask = 7u << 8;
-constexpr std::uint16_t kChecksumError = 1u << 11;
-constexpr std::uint16_t kDeviceInfoError = 1u << 12;
-constexpr std::uint16_t kAckError = 1u << 13;
-constexpr std::uint16_t kWriteEnableError = 1u << 14;
-constexpr std::uint16_t kBusy = 1u << 15;
+using namespace ecat::reg::sii;
 
 constexpr std::size_t k16KbitBytes = 2048;
 
@@ -65,12 +59,11 @@ void SiiEeprom::load_config_area() {
 }
 
 bool SiiEeprom::pdi_owns() const {
-  return (regs_[kConfig] & kOfferToPdi) && (regs_[kPdiAccess] & 0x01);
+  return (regs_[kConfig] & kOfferToPdi) && (regs_[kPdiAccess] & kPdiAccessing);
 }
 
 void SiiEeprom::sync_status_bytes() {
-  regs_[kControlLow] = static_cast<std::uint8_t>(status_);
-  regs_[kControlHigh] = static_cast<std::uint8_t>(status_ >> 8);
+  ecat::put_le16(&regs_[kControlLow], status_);
 }
 
 void SiiEeprom::read(std::uint16_t offset, std::span<std::uint8_t> out, Nanos now, bool /*from_ecat*/) {
@@ -95,7 +88,7 @@ void SiiEeprom::write(std::uint16_t offset, std::span<const std::uint8_t> in, Na
   }
   if (!from_ecat && covers(offset, len, kPdiAccess) && running_ == kNone) {
     const bool may_take = (regs_[kConfig] & kOfferToPdi) && !(regs_[kConfig] & kForceEcat);
-    regs_[kPdiAccess] = may_take ? (byte_at(kPdiAccess) & 0x01) : 0;
+    regs_[kPdiAccess] = may_take ? (byte_at(kPdiAccess) & kPdiAccessing) : 0;
   }
 
   const bool owner = from_ecat ? !pdi_owns() : pdi_owns();
@@ -144,23 +137,21 @@ void SiiEeprom::write(std::uint16_t offset, std::span<const std::uint8_t> in, Na
 
 void SiiEeprom::start(Command cmd, Nanos now, Nanos duration) {
   status_ = static_cast<std::uint16_t>(status_ & ~(kAckError | kWriteEnableError | kCommandMask));
-  status_ |= kBusy | static_cast<std::uint16_t>(cmd << 8);
+  status_ |= kBusy | static_cast<std::uint16_t>(cmd << kCommandShift);
   running_ = cmd;
   busy_until_ = now + duration;
 }
 
 void SiiEeprom::complete_if_due(Nanos now) {
   if (running_ == kNone || now < busy_until_) return;
-  const std::uint32_t address = static_cast<std::uint32_t>(regs_[kAddress]) | (regs_[kAddress + 1] << 8) |
-                                (regs_[kAddress + 2] << 16) | (static_cast<std::uint32_t>(regs_[kAddress + 3]) << 24);
+  const std::uint32_t address = ecat::get_le32(&regs_[kAddress]);
   const bool unanswered = no_acknowledge_ && running_ != kReload;  // reload: load_config_area
   if (unanswered) status_ |= kAckError;
   switch (unanswered ? kNone : running_) {
     case kRead:
       for (int w = 0; w < kReadWords; ++w) {
         const std::uint16_t value = word(static_cast<std::size_t>(address) + w);
-        regs_[kData + 2 * w] = static_cast<std::uint8_t>(value);
-        regs_[kData + 2 * w + 1] = static_cast<std::uint8_t>(value >> 8);
+        ecat::put_le16(&regs_[kData + 2 * w], value);
       }
       break;
     case kWrite: {
@@ -191,8 +182,7 @@ bool SiiEeprom::config_area_valid() const {
   std::uint8_t bytes[14];
   for (std::size_t w = 0; w < 7; ++w) {
     const std::uint16_t v = word(w);
-    bytes[2 * w] = static_cast<std::uint8_t>(v);
-    bytes[2 * w + 1] = static_cast<std::uint8_t>(v >> 8);
+    ecat::put_le16(&bytes[2 * w], v);
   }
   return sii_config_crc(bytes) == static_cast<std::uint8_t>(word(7));
 }
@@ -200,7 +190,7 @@ bool SiiEeprom::config_area_valid() const {
 std::uint16_t SiiEeprom::word(std::size_t word_address) const {
   const std::size_t byte = word_address * 2;
   if (word_address > image_.size() || byte + 1 >= image_.size()) return 0xFFFF;
-  return static_cast<std::uint16_t>(image_[byte] | (image_[byte + 1] << 8));
+  return ecat::get_le16(image_, byte);
 }
 
 bool SiiEeprom::take_reload_done() { return std::exchange(reload_done_, false); }

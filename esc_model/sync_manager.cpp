@@ -2,7 +2,8 @@
 
 #include <algorithm>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/little_endian.hpp"
+#include "ethercat/registers.hpp"
 
 namespace vdrive::esc {
 
@@ -12,18 +13,18 @@ constexpr std::uint8_t kNoBufferWritten = 3;
 }  // namespace
 
 void SyncManager::configure(Registers regs) {
-  start_ = static_cast<std::uint16_t>(regs[reg::sm::kStart] | (regs[reg::sm::kStart + 1] << 8));
-  length_ =
-      static_cast<std::uint16_t>(regs[reg::sm::kLength] | (regs[reg::sm::kLength + 1] << 8));
-  const std::uint8_t control = regs[reg::sm::kControl];
-  mailbox_ = (control & reg::sm::kModeMask) == reg::sm::kModeMailbox;
-  writer_ = (control & reg::sm::kDirectionMask) == reg::sm::kDirectionEcatWrites ? Side::Ecat
-                                                                                  : Side::Pdi;
-  ecat_event_enable_ = (control & reg::sm::kEcatEventEnable) != 0;
-  al_event_enable_ = (control & reg::sm::kAlEventEnable) != 0;
-  watchdog_trigger_ = (control & reg::sm::kWatchdogTrigger) != 0;
-  const bool enable = (regs[reg::sm::kActivate] & reg::sm::kEnable) != 0 &&
-                      (regs[reg::sm::kPdiControl] & reg::sm::kPdiDeactivate) == 0;
+  start_ = ecat::get_le16(regs, ecat::reg::sm::kStart);
+  length_ = ecat::get_le16(regs, ecat::reg::sm::kLength);
+  const std::uint8_t control = regs[ecat::reg::sm::kControl];
+  mailbox_ = (control & ecat::reg::sm::kModeMask) == ecat::reg::sm::kModeMailbox;
+  writer_ = (control & ecat::reg::sm::kDirectionMask) == ecat::reg::sm::kDirectionEcatWrites
+                ? Side::Ecat
+                : Side::Pdi;
+  ecat_event_enable_ = (control & ecat::reg::sm::kEcatEventEnable) != 0;
+  al_event_enable_ = (control & ecat::reg::sm::kAlEventEnable) != 0;
+  watchdog_trigger_ = (control & ecat::reg::sm::kWatchdogTrigger) != 0;
+  const bool enable = (regs[ecat::reg::sm::kActivate] & ecat::reg::sm::kEnable) != 0 &&
+                      (regs[ecat::reg::sm::kPdiControl] & ecat::reg::sm::kPdiDeactivate) == 0;
   if (enable != enabled_) reset_state();
   enabled_ = enable;
 }
@@ -159,17 +160,17 @@ SyncManager::Result SyncManager::write(Side side, std::uint16_t address,
 std::uint8_t SyncManager::status() const {
   if (!enabled_) return 0;
   std::uint8_t s = 0;
-  if (irq_write_) s |= reg::sm::kIrqWrite;
-  if (irq_read_) s |= reg::sm::kIrqRead;
+  if (irq_write_) s |= ecat::reg::sm::kIrqWrite;
+  if (irq_read_) s |= ecat::reg::sm::kIrqRead;
   if (mailbox_) {
-    if (full_) s |= reg::sm::kMailboxFull;
+    if (full_) s |= ecat::reg::sm::kMailboxFull;
   } else {
     const std::uint8_t state = newest_ == kNone ? kNoBufferWritten
                                                 : static_cast<std::uint8_t>(newest_);
-    s |= static_cast<std::uint8_t>(state << reg::sm::kBufferStateShift);
+    s |= static_cast<std::uint8_t>(state << ecat::reg::sm::kBufferStateShift);
   }
-  if (read_open_) s |= reg::sm::kReadBufferOpen;
-  if (write_open_) s |= reg::sm::kWriteBufferOpen;
+  if (read_open_) s |= ecat::reg::sm::kReadBufferOpen;
+  if (write_open_) s |= ecat::reg::sm::kWriteBufferOpen;
   return s;
 }
 

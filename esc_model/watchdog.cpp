@@ -2,12 +2,12 @@
 
 #include <cstdint>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 
 namespace vdrive::esc {
 
 void Watchdog::configure(std::uint16_t divider, std::uint16_t time) {
-  period_ = (static_cast<Nanos>(divider) + 2) * reg::kWatchdogClockNs * static_cast<Nanos>(time);
+  period_ = (static_cast<Nanos>(divider) + 2) * ecat::reg::kWatchdogClockNs * static_cast<Nanos>(time);
   if (period_ == 0) running_ = false;
 }
 

@@ -1,4 +1,7 @@
 #pragma once
+// The project master keeps its own copy of this EtherCAT vocabulary on purpose, written from the
+// specification and not shared with ethercat/: it is the independent test oracle of the slave, so a
+// wrong value in one is caught by the other.
 // EtherCAT application-layer states (AL control 0x0120 / AL status 0x0130 low nibble).
 #include <cstdint>
 #include <optional>

@@ -1,4 +1,7 @@
 #pragma once
+// The project master keeps its own copy of this EtherCAT vocabulary on purpose, written from the
+// specification and not shared with ethercat/: it is the independent test oracle of the slave, so a
+// wrong value in one is caught by the other.
 // CoE client of one slave (ETG.1000.6 clause 5.6.2) on top of its MailboxClient:
 //
 //  - SDO upload and download in every form the protocol has: expedited (up to 4 bytes), normal

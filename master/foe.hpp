@@ -1,4 +1,7 @@
 #pragma once
+// The project master keeps its own copy of this EtherCAT vocabulary on purpose, written from the
+// specification and not shared with ethercat/: it is the independent test oracle of the slave, so a
+// wrong value in one is caught by the other.
 // FoE client of one slave (ETG.1000.6 5.7, File Access over EtherCAT) on its own MailboxClient:
 //
 //  - write(): WRQ (password + file name), then DATA packets 1, 2, ... of (mailbox size - 12)

@@ -1,4 +1,7 @@
 #pragma once
+// The project master keeps its own copy of this EtherCAT vocabulary on purpose, written from the
+// specification and not shared with ethercat/: it is the independent test oracle of the slave, so a
+// wrong value in one is caught by the other.
 // Mailbox client of one slave over SM0 (master -> slave) and SM1 (slave -> master), ETG.1000.4
 // clause 5.6 / ETG.1000.6 clause 5.6:
 //

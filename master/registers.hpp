@@ -1,4 +1,7 @@
 #pragma once
+// The project master keeps its own copy of this EtherCAT vocabulary on purpose, written from the
+// specification and not shared with ethercat/: it is the independent test oracle of the slave, so a
+// wrong value in one is caught by the other.
 // ESC register addresses and bit values the master uses (ETG.1000.4 / ET1100 datasheet names).
 // Header-only and kept separate from esc_model so ecmaster never links the chip model: a master
 // only knows the register map, as a real one does.

@@ -87,7 +87,7 @@ TEST_P(EsmChange, LeavingOpWhileEnabledIsTheProductsAlarm) {
   ASSERT_NE(alarm, nullptr);
   const std::uint16_t expected = c.error_code != 0 ? c.error_code : alarm->error_code;
   ASSERT_TRUE(b.enable(mode::csp)) << b.diag();
-  b.leave_op(firmware::AlState::SafeOp);
+  b.leave_op(ecat::AlState::SafeOp);
   b.run(300 * kMs);
   EXPECT_EQ(b.get(0x603F), expected) << c.source << " " << b.diag();
   EXPECT_EQ(b.engine().state(), PdsState::Fault);
@@ -98,7 +98,7 @@ TEST_P(EsmChange, LeavingOpWhileEnabledIsTheProductsAlarm) {
 TEST_P(EsmChange, LeavingOpWhileDisabledIsNoAlarm) {
   EngineBench b(GetParam().product);
   b.run(10 * kMs);
-  b.leave_op(firmware::AlState::SafeOp);
+  b.leave_op(ecat::AlState::SafeOp);
   b.run(10 * kMs);
   EXPECT_EQ(b.get(0x603F), 0);
   EXPECT_EQ(b.engine().state(), PdsState::SwitchOnDisabled);

@@ -39,23 +39,23 @@ public:
     store_ = std::make_unique<od::ObjectStore>(*dictionary_);
     plant_ = std::make_unique<plant::Plant>(plant_description_);
     engine_ = std::make_unique<DriveEngine>(profile_, *store_, *plant_, 0, plant_description_.axes.at(0),
-                                            [this](const firmware::coe::Emergency& e) { emergencies.push_back(e); });
+                                            [this](const ecat::coe::Emergency& e) { emergencies.push_back(e); });
     engine_->power_on(0);
     to_op();
   }
 
   // The ESM walks Init -> PreOp -> SafeOp -> Op (units are latched on the way).
   void to_op() {
-    using firmware::AlState;
+    using ecat::AlState;
     bus.esm_init = false;
     bus.remote = true;
     engine_->esm_changed(AlState::Init, AlState::PreOp, now_);
     engine_->esm_changed(AlState::PreOp, AlState::SafeOp, now_);
     engine_->esm_changed(AlState::SafeOp, AlState::Op, now_);
   }
-  void leave_op(firmware::AlState to) {
-    engine_->esm_changed(firmware::AlState::Op, to, now_);
-    bus.esm_init = to == firmware::AlState::Init;
+  void leave_op(ecat::AlState to) {
+    engine_->esm_changed(ecat::AlState::Op, to, now_);
+    bus.esm_init = to == ecat::AlState::Init;
   }
 
   DriveEngine& engine() { return *engine_; }
@@ -134,7 +134,7 @@ public:
 
 
   BusState bus{};
-  std::vector<firmware::coe::Emergency> emergencies;
+  std::vector<ecat::coe::Emergency> emergencies;
 
 private:
   profile::ProductProfile profile_;

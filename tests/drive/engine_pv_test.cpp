@@ -26,7 +26,7 @@ protected:
     bench = std::make_unique<EngineBench>(GetParam());
     EngineBench& b = *bench;
     b.set(0x6092, 1, kUnitsPerRev);
-    b.leave_op(firmware::AlState::Init);
+    b.leave_op(ecat::AlState::Init);
     b.to_op();
     ASSERT_NEAR(b.per_rev(), double(kUnitsPerRev), 1e-6);
     b.set(0x6083, 0, std::llround(20 * b.per_rev()));

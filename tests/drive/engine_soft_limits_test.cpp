@@ -131,7 +131,7 @@ TEST(EngineSoftLimits, A6bInitToPreOpNeedsHomingAgain) {
   home_here_then_pp(b);
   soft_limits(b, -1.0, 2.0);
   b.command(kCwShutdown, 20 * kMs);
-  b.leave_op(firmware::AlState::Init);
+  b.leave_op(ecat::AlState::Init);
   b.run(10 * kMs);
   b.to_op();
   ASSERT_TRUE(b.enable(mode::pp)) << b.diag();

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "tests/support/runtime_test_support.hpp"
 #include "vdrive/fault/impaired_link.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
@@ -23,7 +23,7 @@ class ImpairedLinkNoAllocation : public ::testing::Test {
 protected:
   // Sends 20 rounds of frames through the loop behind the impaired link; returns allocations.
   long serve_rounds() {
-    const std::vector<std::uint8_t> frame = test::ethercat_frame(0x07, 0, esc::reg::kAlStatus, 2);
+    const std::vector<std::uint8_t> frame = test::ethercat_frame(0x07, 0, ecat::reg::kAlStatus, 2);
     std::array<std::uint8_t, link::kMaxFrame> reply{};
     const long before = test::allocation_count();
     for (int round = 0; round < 20; ++round) {

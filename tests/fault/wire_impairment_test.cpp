@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "tests/support/runtime_test_support.hpp"
 #include "vdrive/link/link.hpp"
 #include "vdrive/network/network.hpp"
@@ -192,7 +192,7 @@ TEST(WireImpairment, CorruptedFrameToTheSlavesIsCountedByTheEscsAndNeverAnswered
   network::Network net(std::vector<std::string>{"a6b", "ds5c1"}, clock);
   WireImpairment w(11);
   w.set(kToSlaves, {.corrupt = 1.0});
-  auto write = test::ethercat_frame(0x08, 0, esc::reg::kUserRam, std::vector<std::uint8_t>{0xAB});  // BWR 0x0F80
+  auto write = test::ethercat_frame(0x08, 0, ecat::reg::kUserRam, std::vector<std::uint8_t>{0xAB});  // BWR 0x0F80
   w.push(kToSlaves, write, clock.now());
   std::array<std::uint8_t, link::kMaxFrame> buf{};
   bool fcs_error = false;
@@ -200,17 +200,17 @@ TEST(WireImpairment, CorruptedFrameToTheSlavesIsCountedByTheEscsAndNeverAnswered
   ASSERT_EQ(n, write.size());
   ASSERT_TRUE(fcs_error);
   net.segment().process_corrupted(std::span<const std::uint8_t>(buf.data(), n), clock.now());
-  EXPECT_EQ(net.esc(0).peek(esc::reg::kUserRam), 0) << "not executed";
-  EXPECT_EQ(net.esc(0).peek(esc::reg::kRxErrorCounter), 1) << "slave 1: invalid frame, port 0";
-  EXPECT_EQ(net.esc(1).peek(esc::reg::kRxErrorCounter), 0);
-  EXPECT_EQ(net.esc(1).peek(esc::reg::kForwardedRxErrorCounter), 1) << "slave 2: forwarded error";
+  EXPECT_EQ(net.esc(0).peek(ecat::reg::kUserRam), 0) << "not executed";
+  EXPECT_EQ(net.esc(0).peek(ecat::reg::kRxErrorCounter), 1) << "slave 1: invalid frame, port 0";
+  EXPECT_EQ(net.esc(1).peek(ecat::reg::kRxErrorCounter), 0);
+  EXPECT_EQ(net.esc(1).peek(ecat::reg::kForwardedRxErrorCounter), 1) << "slave 2: forwarded error";
 
   w.clear();  // healed: the same write goes through
   w.push(kToSlaves, write, clock.now());
   const std::size_t m = w.pop(kToSlaves, buf, clock.now(), fcs_error);
   ASSERT_FALSE(fcs_error);
   EXPECT_TRUE(net.process_frame(std::span<std::uint8_t>(buf.data(), m), clock.now()));
-  EXPECT_EQ(net.esc(0).peek(esc::reg::kUserRam), 0xAB);
+  EXPECT_EQ(net.esc(0).peek(ecat::reg::kUserRam), 0xAB);
 }
 
 }  // namespace

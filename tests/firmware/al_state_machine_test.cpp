@@ -14,7 +14,7 @@
 namespace vdrive::firmware {
 namespace {
 
-using S = AlState;
+using S = ecat::AlState;
 
 // Records what the machine asked for and answers with scripted results.
 struct ScriptedHooks : TransitionHooks {
@@ -29,10 +29,10 @@ struct ScriptedHooks : TransitionHooks {
   void entered(S from, S to) override { entered_log.emplace_back(from, to); }
 };
 
-AlControl request(std::uint8_t state, bool ack = false, bool id = false) {
-  return AlControl{state, ack, id};
+ecat::AlControl request(std::uint8_t state, bool ack = false, bool id = false) {
+  return ecat::AlControl{state, ack, id};
 }
-AlControl request(S state, bool ack = false, bool id = false) {
+ecat::AlControl request(S state, bool ack = false, bool id = false) {
   return request(static_cast<std::uint8_t>(state), ack, id);
 }
 
@@ -40,7 +40,7 @@ class Esm {
 public:
   explicit Esm(const profile::ProductProfile& p) : esm(EsmTraits::of(p)) { esm.reset(); }
 
-  void write(AlControl c, std::uint16_t device_id = 0) { esm.on_al_control(c, device_id, hooks); }
+  void write(ecat::AlControl c, std::uint16_t device_id = 0) { esm.on_al_control(c, device_id, hooks); }
   // Drives the machine up the ladder with passing checks.
   void bring_to(S target) {
     if (target == S::Init) return;

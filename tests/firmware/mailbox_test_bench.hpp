@@ -134,14 +134,14 @@ public:
                  static_cast<std::uint8_t>(length), static_cast<std::uint8_t>(length >> 8), control});
     write(static_cast<std::uint16_t>(base + 6), {0x01});
   }
-  void request_state(AlState s) { esm.on_al_control(AlControl{static_cast<std::uint8_t>(s)}, 0, *this); }
+  void request_state(ecat::AlState s) { esm.on_al_control(ecat::AlControl{static_cast<std::uint8_t>(s)}, 0, *this); }
   void to_preop() {
     for (int n = 0; n < 2; ++n) {
       const auto& sm = product.sync_managers.at(static_cast<std::size_t>(n));
       configure_sm(n, sm.start, sm.length, sm.control);
     }
-    request_state(AlState::PreOp);
-    ASSERT_EQ(esm.state(), AlState::PreOp);
+    request_state(ecat::AlState::PreOp);
+    ASSERT_EQ(esm.state(), ecat::AlState::PreOp);
   }
   std::uint16_t sm0_start() const { return product.sync_managers.at(0).start; }
   std::uint16_t sm0_length() const { return product.sync_managers.at(0).length; }
@@ -176,7 +176,7 @@ public:
   CheckResult check_init_to_boot() override { return CheckResult::pass(); }
   CheckResult check_preop_to_safeop() override { return CheckResult::pass(); }
   CheckResult check_safeop_to_op() override { return CheckResult::pass(); }
-  void entered(AlState from, AlState to) override { module.entered(from, to, clock.now()); }
+  void entered(ecat::AlState from, ecat::AlState to) override { module.entered(from, to, clock.now()); }
 
   TempDir temp;
   VirtualClock clock;

@@ -162,16 +162,16 @@ public:
   }
 
   void service() override {
-    const std::uint32_t events = pdi.read_u32(esc::reg::kAlEventRequest);
+    const std::uint32_t events = pdi.read_u32(ecat::reg::kAlEventRequest);
     module.on_events(events, clock.now());
     firmware::FirmwareModule::Fault fault;
     if (module.take_fault(fault)) esm.raise(fault.state, fault.code, *this);
-    if (events & esc::reg::al_event::kSmActivation) {
+    if (events & ecat::reg::al_event::kSmActivation) {
       for (int n = 0; n < 4; ++n) pdi.read_sm(n);  // as the firmware does: clears the event
     }
   }
   void go(std::uint16_t control) {
-    esm.on_al_control(firmware::AlControl::decode(control), 0, *this);
+    esm.on_al_control(ecat::AlControl::decode(control), 0, *this);
   }
   std::span<std::uint8_t> value(std::uint16_t index, std::uint8_t subindex) {
     const od::EntryDesc* e = dictionary->find(index, subindex);
@@ -182,12 +182,12 @@ public:
   firmware::CheckResult check_init_to_preop() override { return firmware::CheckResult::pass(); }
   firmware::CheckResult check_init_to_boot() override { return firmware::CheckResult::pass(); }
   firmware::CheckResult check_preop_to_safeop() override {
-    return module.check_transition(firmware::AlState::PreOp, firmware::AlState::SafeOp);
+    return module.check_transition(ecat::AlState::PreOp, ecat::AlState::SafeOp);
   }
   firmware::CheckResult check_safeop_to_op() override {
-    return module.check_transition(firmware::AlState::SafeOp, firmware::AlState::Op);
+    return module.check_transition(ecat::AlState::SafeOp, ecat::AlState::Op);
   }
-  void entered(firmware::AlState from, firmware::AlState to) override {
+  void entered(ecat::AlState from, ecat::AlState to) override {
     module.entered(from, to, clock.now());
   }
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "esc_model/esc_faults.hpp"
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "tests/master/virtual_line.hpp"
@@ -49,7 +49,7 @@ protected:
     int cycles = 0;
     o.done = [&, watched] {
       if (++cycles == healthy) inject();
-      return cycles > healthy && (esc_u16(watched, esc::reg::kAlStatus) & kAlErrorFlag) != 0;
+      return cycles > healthy && (esc_u16(watched, ecat::reg::kAlStatus) & kAlErrorFlag) != 0;
     };
     return run_to_op(master, o);
   }
@@ -58,20 +58,20 @@ protected:
 TEST_F(EscFaultsInOp, SyncLostMakesTheA6bReportLostSync002C) {
   const OpRunResult r = run(0, [&] { line.network().esc(0).set_faults({.sync_lost = true}); });
   ASSERT_TRUE(r.reached_op) << r.error;
-  EXPECT_EQ(esc_u16(0, esc::reg::kAlStatus), 0x0014) << "Safe-Op with the error flag";
-  EXPECT_EQ(esc_u16(0, esc::reg::kAlStatusCode), 0x002C) << "A6B Err80.7 (profile al_codes.sync_error)";
-  EXPECT_EQ(esc_u16(1, esc::reg::kAlStatus), 0x0008) << "the other drive keeps its SYNC0 and Op";
+  EXPECT_EQ(esc_u16(0, ecat::reg::kAlStatus), 0x0014) << "Safe-Op with the error flag";
+  EXPECT_EQ(esc_u16(0, ecat::reg::kAlStatusCode), 0x002C) << "A6B Err80.7 (profile al_codes.sync_error)";
+  EXPECT_EQ(esc_u16(1, ecat::reg::kAlStatus), 0x0008) << "the other drive keeps its SYNC0 and Op";
   EXPECT_GT(r.left_op, 0u);
 }
 
 TEST_F(EscFaultsInOp, ExpiredProcessDataWatchdogIsAlStatusCode001B) {
   const OpRunResult r = run(1, [&] { line.network().esc(1).set_faults({.pd_watchdog_expired = true}); });
   ASSERT_TRUE(r.reached_op) << r.error;
-  EXPECT_EQ(esc_u16(1, esc::reg::kAlStatus), 0x0014) << "Safe-Op with the error flag";
-  EXPECT_EQ(esc_u16(1, esc::reg::kAlStatusCode), 0x001B);
-  EXPECT_EQ(line.network().esc(1).peek(esc::reg::kWatchdogStatusProcessData) & 0x01, 0)
+  EXPECT_EQ(esc_u16(1, ecat::reg::kAlStatus), 0x0014) << "Safe-Op with the error flag";
+  EXPECT_EQ(esc_u16(1, ecat::reg::kAlStatusCode), 0x001B);
+  EXPECT_EQ(line.network().esc(1).peek(ecat::reg::kWatchdogStatusProcessData) & 0x01, 0)
       << "0x0440 reads expired although the master kept writing SM2";
-  EXPECT_EQ(esc_u16(0, esc::reg::kAlStatus), 0x0008);
+  EXPECT_EQ(esc_u16(0, ecat::reg::kAlStatus), 0x0008);
 }
 
 TEST_F(EscFaultsInOp, WkcErrorCostsTheCyclicFrameItsShareOfTheWorkingCounter) {
@@ -87,19 +87,19 @@ TEST(CableFaultOnLine, BreakAfterSlave1AndItsRepairShowInTheBroadcastWorkingCoun
   Master master{line, line.clock()};
   ASSERT_EQ(master.scan(), 3u);
   std::array<std::uint8_t, 2> type{};
-  EXPECT_EQ(master.transport().brd(esc::reg::kType, type), 3);
+  EXPECT_EQ(master.transport().brd(ecat::reg::kType, type), 3);
   line.network().segment().set_cable(0, false);  // between slave 1 and slave 2
-  EXPECT_EQ(master.transport().brd(esc::reg::kType, type), 1) << "slave 1 closes its port 1 and turns the frame";
+  EXPECT_EQ(master.transport().brd(ecat::reg::kType, type), 1) << "slave 1 closes its port 1 and turns the frame";
   // Slave 1 reports port 1 without link (DL status 0x0110 bit 5) and counts the lost link.
-  const auto dl = master.transport().fprd_value<std::uint16_t>(master.slaves()[0].station, esc::reg::kDlStatus);
+  const auto dl = master.transport().fprd_value<std::uint16_t>(master.slaves()[0].station, ecat::reg::kDlStatus);
   ASSERT_TRUE(dl.has_value());
   EXPECT_EQ(*dl & 0x0030, 0x0010);
-  EXPECT_EQ(master.transport().fprd_value<std::uint8_t>(master.slaves()[0].station, esc::reg::kLostLinkCounter + 1), 1);
-  EXPECT_FALSE(master.transport().fprd_value<std::uint16_t>(master.slaves()[1].station, esc::reg::kDlStatus))
+  EXPECT_EQ(master.transport().fprd_value<std::uint8_t>(master.slaves()[0].station, ecat::reg::kLostLinkCounter + 1), 1);
+  EXPECT_FALSE(master.transport().fprd_value<std::uint16_t>(master.slaves()[1].station, ecat::reg::kDlStatus))
       << "slave 2 is out of reach";
   line.network().segment().set_cable(0, true);
-  EXPECT_EQ(master.transport().brd(esc::reg::kType, type), 3);
-  EXPECT_TRUE(master.transport().fprd_value<std::uint16_t>(master.slaves()[1].station, esc::reg::kDlStatus));
+  EXPECT_EQ(master.transport().brd(ecat::reg::kType, type), 3);
+  EXPECT_TRUE(master.transport().fprd_value<std::uint16_t>(master.slaves()[1].station, ecat::reg::kDlStatus));
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "tests/support/runtime_test_support.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -40,18 +40,18 @@ TEST_F(NetworkTest, OneSlavePerProductInCableOrder) {
     EXPECT_EQ(net_.profile(i).id, ids_[i]);
     EXPECT_EQ(&net_.segment().slave(i), &net_.esc(i)) << "segment order is cable order";
     // The ESC carries its product's silicon identity.
-    EXPECT_EQ(net_.esc(i).peek(esc::reg::kType), profile::load_profile(ids_[i]).esc.type);
+    EXPECT_EQ(net_.esc(i).peek(ecat::reg::kType), profile::load_profile(ids_[i]).esc.type);
   }
 }
 
 TEST_F(NetworkTest, EverySlaveIsPoweredOnInInit) {
   for (std::size_t i = 0; i < net_.size(); ++i) {
-    EXPECT_EQ(net_.esc(i).peek(esc::reg::kAlStatus) & esc::reg::kAlStateMask, esc::reg::kAlStateInit);
+    EXPECT_EQ(net_.esc(i).peek(ecat::reg::kAlStatus) & ecat::reg::kAlStateMask, ecat::reg::kAlStateInit);
   }
 }
 
 TEST_F(NetworkTest, BroadcastReadVisitsEverySlave) {
-  const auto reply = exchange(ethercat_frame(kBrd, 0, esc::reg::kType, 1));
+  const auto reply = exchange(ethercat_frame(kBrd, 0, ecat::reg::kType, 1));
   ASSERT_FALSE(reply.empty());
   EXPECT_EQ(first_wkc(reply), 3);
   std::uint8_t types = 0;  // BRD returns the OR of every slave's register
@@ -61,7 +61,7 @@ TEST_F(NetworkTest, BroadcastReadVisitsEverySlave) {
 
 TEST_F(NetworkTest, AutoIncrementAddressesTheSlaveAtThatPosition) {
   // Position 2 (third slave) is addressed with ADP = -2.
-  const auto reply = exchange(ethercat_frame(kAprd, static_cast<std::uint16_t>(-2), esc::reg::kType, 1));
+  const auto reply = exchange(ethercat_frame(kAprd, static_cast<std::uint16_t>(-2), ecat::reg::kType, 1));
   ASSERT_FALSE(reply.empty());
   EXPECT_EQ(first_wkc(reply), 1);
   EXPECT_EQ(first_data(reply)[0], profile::load_profile("ds1000a").esc.type);
@@ -71,35 +71,35 @@ TEST_F(NetworkTest, FirmwareAnswersAnAlControlRequestRightAfterTheFrame) {
   // Init -> Safe-Op is not a valid transition (ETG.1000.6): the firmware, serviced on its PDI
   // IRQ after the frame, refuses it with the error flag and the product's status code.
   const std::uint16_t safe_op = 0x0004;
-  auto reply = exchange(ethercat_frame(kApwr, 0, esc::reg::kAlControl,
+  auto reply = exchange(ethercat_frame(kApwr, 0, ecat::reg::kAlControl,
                                        {static_cast<std::uint8_t>(safe_op), 0}));
   ASSERT_FALSE(reply.empty());
   ASSERT_EQ(first_wkc(reply), 1);
 
-  reply = exchange(ethercat_frame(kAprd, 0, esc::reg::kAlStatus, 6));  // 0x0130..0x0135
+  reply = exchange(ethercat_frame(kAprd, 0, ecat::reg::kAlStatus, 6));  // 0x0130..0x0135
   ASSERT_FALSE(reply.empty());
   const auto data = first_data(reply);
   const std::uint16_t status = static_cast<std::uint16_t>(data[0] | (data[1] << 8));
   const std::uint16_t code = static_cast<std::uint16_t>(data[4] | (data[5] << 8));
-  EXPECT_EQ(status & esc::reg::kAlStateMask, 0x0010 | esc::reg::kAlStateInit);
+  EXPECT_EQ(status & ecat::reg::kAlStateMask, 0x0010 | ecat::reg::kAlStateInit);
   EXPECT_EQ(code, net_.profile(0).al_codes.invalid_transition);
   // The other slaves were not addressed and stay in Init without error.
-  EXPECT_EQ(net_.esc(1).peek(esc::reg::kAlStatus) & esc::reg::kAlStateMask, esc::reg::kAlStateInit);
+  EXPECT_EQ(net_.esc(1).peek(ecat::reg::kAlStatus) & ecat::reg::kAlStateMask, ecat::reg::kAlStateInit);
 }
 
 TEST_F(NetworkTest, PowerCycleForgetsTheErrorAndTheStationAddress) {
-  exchange(ethercat_frame(kApwr, 0, esc::reg::kAlControl, {0x04, 0}));             // refused: error flag
-  exchange(ethercat_frame(kApwr, 0, esc::reg::kStationAddress, {0x01, 0x10}));    // 0x1001
-  ASSERT_NE(net_.esc(0).peek(esc::reg::kAlStatus) & 0x10, 0);
-  ASSERT_EQ(net_.esc(0).peek(esc::reg::kStationAddress), 0x01);
+  exchange(ethercat_frame(kApwr, 0, ecat::reg::kAlControl, {0x04, 0}));             // refused: error flag
+  exchange(ethercat_frame(kApwr, 0, ecat::reg::kStationAddress, {0x01, 0x10}));    // 0x1001
+  ASSERT_NE(net_.esc(0).peek(ecat::reg::kAlStatus) & 0x10, 0);
+  ASSERT_EQ(net_.esc(0).peek(ecat::reg::kStationAddress), 0x01);
 
   net_.power_cycle(clock_.now());
 
-  EXPECT_EQ(net_.esc(0).peek(esc::reg::kAlStatus), esc::reg::kAlStateInit);
-  EXPECT_EQ(net_.esc(0).peek(esc::reg::kStationAddress), 0x00);
-  EXPECT_EQ(net_.esc(0).peek(esc::reg::kAlStatusCode), 0x00);
+  EXPECT_EQ(net_.esc(0).peek(ecat::reg::kAlStatus), ecat::reg::kAlStateInit);
+  EXPECT_EQ(net_.esc(0).peek(ecat::reg::kStationAddress), 0x00);
+  EXPECT_EQ(net_.esc(0).peek(ecat::reg::kAlStatusCode), 0x00);
   // The EEPROM survives: the identity still reads back through the ESC's SII interface.
-  EXPECT_EQ(net_.esc(0).peek(esc::reg::kType), net_.profile(0).esc.type);
+  EXPECT_EQ(net_.esc(0).peek(ecat::reg::kType), net_.profile(0).esc.type);
 }
 
 TEST_F(NetworkTest, NonEtherCatFrameDoesNotComeBack) {
@@ -107,11 +107,11 @@ TEST_F(NetworkTest, NonEtherCatFrameDoesNotComeBack) {
 }
 
 TEST_F(NetworkTest, TruncatedFrameIsDestroyedNotCrashed) {
-  auto frame = ethercat_frame(kBrd, 0, esc::reg::kType, 8);
+  auto frame = ethercat_frame(kBrd, 0, ecat::reg::kType, 8);
   frame.resize(frame.size() - 6);  // datagram claims more bytes than the frame holds
   EXPECT_TRUE(exchange(frame).empty());
   // The line still works afterwards.
-  EXPECT_EQ(first_wkc(exchange(ethercat_frame(kBrd, 0, esc::reg::kType, 1))), 3);
+  EXPECT_EQ(first_wkc(exchange(ethercat_frame(kBrd, 0, ecat::reg::kType, 1))), 3);
 }
 
 TEST_F(NetworkTest, TickAtTheNextDeadlineMovesItOn) {
@@ -131,7 +131,7 @@ TEST(NetworkErrors, UnknownProductIsRefused) {
 TEST(NetworkErrors, AnEmptyLineReturnsNothing) {
   VirtualClock clock;
   Network net(std::vector<std::string>{}, clock);
-  auto frame = ethercat_frame(kBrd, 0, esc::reg::kType, 1);
+  auto frame = ethercat_frame(kBrd, 0, ecat::reg::kType, 1);
   // No slave on the cable: a real master sees no frame come back.
   EXPECT_EQ(net.size(), 0u);
   EXPECT_EQ(net.next_deadline(), std::numeric_limits<Nanos>::max());

@@ -17,7 +17,7 @@ namespace {
 std::uint32_t value_of(const ObjectStore& s, std::uint16_t index, std::uint8_t sub) {
   std::uint8_t buf[8] = {};
   std::size_t n = 0;
-  EXPECT_EQ(s.read(index, sub, buf, n, firmware::AlState::PreOp), SdoAbort::Ok)
+  EXPECT_EQ(s.read(index, sub, buf, n, ecat::AlState::PreOp), SdoAbort::Ok)
       << std::hex << index << ":" << int(sub);
   std::uint32_t v = 0;
   for (std::size_t i = 0; i < n && i < 4; ++i) v |= static_cast<std::uint32_t>(buf[i]) << (8 * i);

@@ -17,7 +17,7 @@ namespace vdrive::od {
 namespace {
 
 using namespace od::test;
-using firmware::AlState;
+using ecat::AlState;
 
 class A6bStore : public ::testing::Test {
 protected:

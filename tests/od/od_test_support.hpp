@@ -58,7 +58,7 @@ inline std::string yaml_header(const std::string& id, int objects, int entries) 
 }
 
 inline std::vector<std::uint8_t> read_bytes(const ObjectStore& s, std::uint16_t index, std::uint8_t sub,
-                                            firmware::AlState state = firmware::AlState::PreOp) {
+                                            ecat::AlState state = ecat::AlState::PreOp) {
   std::vector<std::uint8_t> buf(1024);
   std::size_t n = 0;
   const SdoAbort r = s.read(index, sub, buf, n, state);

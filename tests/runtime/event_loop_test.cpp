@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "tests/runtime/loopback_line_test.hpp"
 #include "tests/support/runtime_test_support.hpp"
 #include "vdrive/link/link_error.hpp"
@@ -38,7 +38,7 @@ protected:
 };
 
 TEST_F(VirtualLoopTest, PendingFrameIsAnsweredWithoutTimeMoving) {
-  ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, esc::reg::kType, 1)));
+  ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, ecat::reg::kType, 1)));
   run_pending(net_, line_, clock_, counters_);
   EXPECT_EQ(clock_.now(), 5 * kMs);
   const auto reply = take(master_);
@@ -50,11 +50,11 @@ TEST_F(VirtualLoopTest, PendingFrameIsAnsweredWithoutTimeMoving) {
 }
 
 TEST_F(VirtualLoopTest, EveryQueuedFrameIsAnsweredInOrder) {
-  for (std::uint16_t ado : {esc::reg::kType, esc::reg::kRevision, esc::reg::kBuild}) {
+  for (std::uint16_t ado : {ecat::reg::kType, ecat::reg::kRevision, ecat::reg::kBuild}) {
     ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, ado, 1)));
   }
   run_pending(net_, line_, clock_, counters_);
-  for (std::uint16_t ado : {esc::reg::kType, esc::reg::kRevision, esc::reg::kBuild}) {
+  for (std::uint16_t ado : {ecat::reg::kType, ecat::reg::kRevision, ecat::reg::kBuild}) {
     const auto reply = take(master_);
     ASSERT_FALSE(reply.empty());
     EXPECT_EQ(reply[14 + 2 + 4] | (reply[14 + 2 + 5] << 8), ado);  // datagram address offset
@@ -64,7 +64,7 @@ TEST_F(VirtualLoopTest, EveryQueuedFrameIsAnsweredInOrder) {
 }
 
 TEST_F(VirtualLoopTest, DestroyedFrameIsCountedAndGetsNoReply) {
-  auto frame = ethercat_frame(kBrd, 0, esc::reg::kType, 8);
+  auto frame = ethercat_frame(kBrd, 0, ecat::reg::kType, 8);
   frame.resize(frame.size() - 6);  // the datagram runs past the end of the frame
   ASSERT_TRUE(master_.send(frame));
   run_pending(net_, line_, clock_, counters_);
@@ -84,7 +84,7 @@ TEST_F(VirtualLoopTest, RunUntilLeavesTheClockAtTheTargetAndNeverGoesBack) {
 
 TEST_F(VirtualLoopTest, FramesSentLaterAreAnsweredAtTheirTime) {
   run_until(net_, line_, clock_, 10 * kMs, counters_);
-  ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, esc::reg::kType, 1)));
+  ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, ecat::reg::kType, 1)));
   run_until(net_, line_, clock_, 11 * kMs, counters_);
   EXPECT_EQ(first_wkc(take(master_)), 2);
   EXPECT_EQ(clock_.now(), 11 * kMs);
@@ -100,7 +100,7 @@ TEST(RealTimeLoop, ServesOnAThreadAndStopsWhenAsked) {
   LoopCounters counters;
   std::thread loop([&] { serve(net, *line, clock, stop, counters); });
 
-  ASSERT_TRUE(master->send(ethercat_frame(kBrd, 0, esc::reg::kType, 1)));
+  ASSERT_TRUE(master->send(ethercat_frame(kBrd, 0, ecat::reg::kType, 1)));
   const auto reply = take(*master, 1000 * kMs);
   EXPECT_EQ(reply.empty() ? -1 : first_wkc(reply), 1);
 

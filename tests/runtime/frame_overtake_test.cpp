@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "tests/runtime/loopback_line_test.hpp"
 #include "tests/support/runtime_test_support.hpp"
 #include "vdrive/fault/impaired_link.hpp"
@@ -96,7 +96,7 @@ protected:
 
 TEST_F(FrameOvertakeTest, FrameArrivingWhileFirmwareRunsGoesBackBeforeTheRestOfTheLine) {
   CountingLink link(line_, master_, link::PeekCost::Free);
-  link.arrive_at_peek(1, ethercat_frame(kBrd, 0, esc::reg::kType, 1));
+  link.arrive_at_peek(1, ethercat_frame(kBrd, 0, ecat::reg::kType, 1));
   serve_round(link);
 
   ASSERT_EQ(link.sent_at().size(), 1u);
@@ -109,7 +109,7 @@ TEST_F(FrameOvertakeTest, FrameArrivingWhileFirmwareRunsGoesBackBeforeTheRestOfT
 
 TEST_F(FrameOvertakeTest, WithoutAPeekTheFrameWaitsForTheBatch) {
   CountingLink link(line_, master_, link::PeekCost::Unsupported);
-  link.arrive_at_peek(1, ethercat_frame(kBrd, 0, esc::reg::kType, 1));  // at the round's receive
+  link.arrive_at_peek(1, ethercat_frame(kBrd, 0, ecat::reg::kType, 1));  // at the round's receive
   serve_round(link);
 
   EXPECT_EQ(link.looks(), 1) << "asked only by the round's own receive, after the batch";
@@ -120,14 +120,14 @@ TEST_F(FrameOvertakeTest, WithoutAPeekTheFrameWaitsForTheBatch) {
 TEST_F(FrameOvertakeTest, InterruptsOfAFrameThatOvertookAreServicedAfterTheBatch) {
   CountingLink link(line_, master_, link::PeekCost::Free);
   // Every slave is asked for Pre-Op: an AL control event for each firmware.
-  link.arrive_at_peek(1, ethercat_frame(kBwr, 0, esc::reg::kAlControl, std::vector<std::uint8_t>{0x02, 0x00}));
+  link.arrive_at_peek(1, ethercat_frame(kBwr, 0, ecat::reg::kAlControl, std::vector<std::uint8_t>{0x02, 0x00}));
   serve_round(link);
 
   ASSERT_EQ(first_wkc(take(master_)), 3);
   for (std::size_t i = 0; i < net_.size(); ++i) {
     EXPECT_EQ(net_.esc(i).pdi_irq(), 0u) << "slave " << i << ": its AL control event is still unserviced";
     std::array<std::uint8_t, 2> status{};
-    net_.esc(i).pdi_read(esc::reg::kAlStatus, status);
+    net_.esc(i).pdi_read(ecat::reg::kAlStatus, status);
     EXPECT_NE(status[0], 0x01) << "slave " << i << ": still plain Init, its firmware never saw the request";
   }
 }
@@ -137,7 +137,7 @@ TEST_F(FrameOvertakeTest, FramesWaitingBehindAFrameGoBackBeforeTheFirmwareReacts
   CountingLink link(line_, master_, link::PeekCost::Free);
   run_until(net_, line_, clock_, kMs, counters_);
   ASSERT_GT(net_.next_deadline(), clock_.now()) << "no firmware timer may run in the round";
-  for (std::uint16_t ado : {esc::reg::kType, esc::reg::kRevision, esc::reg::kBuild}) {
+  for (std::uint16_t ado : {ecat::reg::kType, ecat::reg::kRevision, ecat::reg::kBuild}) {
     ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, ado, 1)));
   }
   serve_once(net_, link, clock_, clock_.now(), counters_);
@@ -164,7 +164,7 @@ TEST_F(FrameOvertakeTest, ASystemCallPeekIsMadeOncePerInterval) {
 
 TEST_F(FrameOvertakeTest, AFloodIsTakenInBoundedGulps) {
   constexpr int kFlood = 40;
-  for (int i = 0; i < kFlood; ++i) ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, esc::reg::kType, 1)));
+  for (int i = 0; i < kFlood; ++i) ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, ecat::reg::kType, 1)));
   FrameOvertake overtake(net_, line_, clock_, counters_, clock_.now());
   overtake.run();
   EXPECT_EQ(counters_.frames_out.load(), static_cast<std::uint64_t>(kMaxFramesInOneGo));
@@ -181,7 +181,7 @@ TEST_F(FrameOvertakeTest, AnImpairedWireLetsNothingOvertake) {
   delayed.delay = 100'000;
   wire.set(fault::Direction::to_slaves, delayed);
   impaired.refresh();
-  ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, esc::reg::kType, 1)));
+  ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, ecat::reg::kType, 1)));
   EXPECT_EQ(impaired.peek_cost(), link::PeekCost::Unsupported);
   EXPECT_FALSE(impaired.frame_waiting()) << "when a delayed frame arrives is the wire's to say";
   FrameOvertake overtake(net_, impaired, clock_, counters_, clock_.now());
@@ -190,7 +190,7 @@ TEST_F(FrameOvertakeTest, AnImpairedWireLetsNothingOvertake) {
 
 TEST_F(FrameOvertakeTest, VirtualTimeNeverLooks) {
   CountingLink link(line_, master_, link::PeekCost::Free);
-  ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, esc::reg::kType, 1)));
+  ASSERT_TRUE(master_.send(ethercat_frame(kBrd, 0, ecat::reg::kType, 1)));
   run_until(net_, link, clock_, 5 * kMs, counters_);
   EXPECT_EQ(link.looks(), 0);
   EXPECT_EQ(first_wkc(take(master_)), 3);

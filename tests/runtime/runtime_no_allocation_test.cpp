@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "tests/support/runtime_test_support.hpp"
 #include "vdrive/link/loopback_link.hpp"
 #include "vdrive/runtime/event_loop.hpp"
@@ -26,14 +26,14 @@ TEST(RuntimeNoAllocation, ServingFramesAndTimersAllocatesNothing) {
   // Reads, writes (station addresses, AL control requests the firmware answers, a refused one),
   // and a malformed frame: every path a frame can take, built before counting starts.
   std::vector<std::vector<std::uint8_t>> frames = {
-      test::ethercat_frame(0x07, 0, esc::reg::kType, 8),                       // BRD
-      test::ethercat_frame(0x02, 0, esc::reg::kStationAddress, {0x01, 0x10}),  // APWR
-      test::ethercat_frame(0x04, 0x1001, esc::reg::kAlStatus, 6),              // FPRD
-      test::ethercat_frame(0x08, 0, esc::reg::kAlControl, {0x04, 0x00}),       // BWR: Safe-Op, refused
-      test::ethercat_frame(0x08, 0, esc::reg::kAlControl, {0x11, 0x00}),       // BWR: Init + ack
-      test::ethercat_frame(0x07, 0, esc::reg::kAlStatus, 2),
+      test::ethercat_frame(0x07, 0, ecat::reg::kType, 8),                       // BRD
+      test::ethercat_frame(0x02, 0, ecat::reg::kStationAddress, {0x01, 0x10}),  // APWR
+      test::ethercat_frame(0x04, 0x1001, ecat::reg::kAlStatus, 6),              // FPRD
+      test::ethercat_frame(0x08, 0, ecat::reg::kAlControl, {0x04, 0x00}),       // BWR: Safe-Op, refused
+      test::ethercat_frame(0x08, 0, ecat::reg::kAlControl, {0x11, 0x00}),       // BWR: Init + ack
+      test::ethercat_frame(0x07, 0, ecat::reg::kAlStatus, 2),
   };
-  auto truncated = test::ethercat_frame(0x07, 0, esc::reg::kType, 8);
+  auto truncated = test::ethercat_frame(0x07, 0, ecat::reg::kType, 8);
   truncated.resize(truncated.size() - 6);
   frames.push_back(truncated);
   std::array<std::uint8_t, link::kMaxFrame> reply{};

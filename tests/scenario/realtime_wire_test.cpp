@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "tests/support/runtime_test_support.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/link/loopback_link.hpp"
@@ -55,7 +55,7 @@ class RealtimeWireStall : public ::testing::Test {
 protected:
   // Sends one BRD of AL status and waits half a cycle for it, as the runner does each cycle.
   std::size_t exchange() {
-    const std::vector<std::uint8_t> frame = test::ethercat_frame(0x07, 0, esc::reg::kAlStatus, 2);
+    const std::vector<std::uint8_t> frame = test::ethercat_frame(0x07, 0, ecat::reg::kAlStatus, 2);
     EXPECT_TRUE(wire_.send(frame));
     return wire_.receive(reply_, kHalfCycle);
   }

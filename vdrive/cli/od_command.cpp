@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "ethercat/little_endian.hpp"
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -43,9 +44,7 @@ std::uint16_t parse_index(const std::string& text) {
 }
 
 std::int64_t integer_value(const od::EntryDesc& e) {
-  std::uint64_t raw = 0;
-  for (std::size_t i = 0; i < e.default_value.size() && i < 8; ++i)
-    raw |= std::uint64_t{e.default_value[i]} << (8 * i);
+  std::uint64_t raw = ecat::get_le(e.default_value);
   const std::size_t bits = 8 * std::min<std::size_t>(e.default_value.size(), 8);
   if (od::is_signed(e.type) && bits < 64 && (raw >> (bits - 1)) & 1) raw |= ~std::uint64_t{0} << bits;
   return static_cast<std::int64_t>(raw);

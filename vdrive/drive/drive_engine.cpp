@@ -142,8 +142,8 @@ void DriveEngine::power_on(Nanos now) {
   publish(sample_, fb);
 }
 
-void DriveEngine::esm_changed(firmware::AlState from, firmware::AlState to, Nanos now, bool by_error) {
-  using firmware::AlState;
+void DriveEngine::esm_changed(ecat::AlState from, ecat::AlState to, Nanos now, bool by_error) {
+  using ecat::AlState;
   if (to == AlState::Init) probe_.cancel();
   if (from == AlState::Init && to == AlState::PreOp) {
     if (homing_) homing_->clear_attained();
@@ -153,7 +153,7 @@ void DriveEngine::esm_changed(firmware::AlState from, firmware::AlState to, Nano
     latch_units();
   }
   if (from == AlState::PreOp && to == AlState::SafeOp) latch_units();  // startup SDOs are written by now
-  if (!by_error && from == AlState::Op && firmware::rank(to) < firmware::rank(from) && pds_.power_stage_on())
+  if (!by_error && from == AlState::Op && ecat::rank(to) < ecat::rank(from) && pds_.power_stage_on())
     raise_cause(profile_.drive.alarms.esm_change_while_enabled, now);
 }
 

@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "common/clock.hpp"
+#include "ethercat/al_state.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/drive/alarms/alarm_manager.hpp"
 #include "vdrive/drive/alarms/alarm_monitors.hpp"
@@ -32,7 +33,6 @@
 #include "vdrive/drive/pds/pds_machine.hpp"
 #include "vdrive/drive/pds/stop_sequence.hpp"
 #include "vdrive/drive/unit_scaling.hpp"
-#include "vdrive/firmware/al_state.hpp"
 
 namespace vdrive::drive {
 
@@ -61,7 +61,7 @@ public:
   // The ESM moved from `from` to `to`. Leaving Op while the power stage is on is the product's
   // "ESM change while enabled" alarm (A6B Err88.2, DS5C1 E-882, DS1000A-EC FF80h), unless the
   // move was an EtherCAT error that already raised its own alarm (`by_error`).
-  void esm_changed(firmware::AlState from, firmware::AlState to, Nanos now, bool by_error = false);
+  void esm_changed(ecat::AlState from, ecat::AlState to, Nanos now, bool by_error = false);
   // New outputs reached the RxPDO objects (a bus cycle): cyclic modes take their set-point.
   void outputs_taken(Nanos now);
   // A PDO mapping became effective (PreOp->SafeOp): the objects its RxPDO carries every cycle.

@@ -5,6 +5,7 @@
 #include <map>
 #include <vector>
 
+#include "ethercat/little_endian.hpp"
 #include "vdrive/esi/esi_names.hpp"
 
 namespace vdrive::esi {
@@ -53,8 +54,7 @@ Layout layout(const ObjectDesc& o) {
 std::vector<std::uint8_t> limit_bytes(std::int64_t value, std::uint16_t bit_length) {
   const std::size_t n = std::max<std::size_t>(1, (bit_length + 7u) / 8u);
   std::vector<std::uint8_t> out(n);
-  const auto u = static_cast<std::uint64_t>(value);
-  for (std::size_t i = 0; i < n && i < 8; ++i) out[i] = static_cast<std::uint8_t>(u >> (8 * i));
+  ecat::put_le(out, static_cast<std::uint64_t>(value));
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "ethercat/little_endian.hpp"
 #include "vdrive/esi/esi_dictionary.hpp"
 #include "vdrive/esi/esi_names.hpp"
 #include "vdrive/esi/xml_writer.hpp"
@@ -107,7 +108,7 @@ void write_optional_pdo(XmlWriter& xml, const char* tag, const profile::PdoObjec
     if (!m || m->default_value.size() < 4) break;
     const auto& v = m->default_value;  // little-endian: bit length, subindex, index
     const std::uint8_t bits = v[0], msub = v[1];
-    const auto midx = static_cast<std::uint16_t>(v[2] | (v[3] << 8));
+    const std::uint16_t midx = ecat::get_le16(v, 2);
     const od::EntryDesc* target = mapped_entry(d, midx, msub);
     write_entry(xml, midx, msub, bits, target ? target->name : std::string{},
                 target ? type_name(target->type, target->bit_length) : std::string{});

@@ -3,14 +3,14 @@
 namespace vdrive::firmware {
 
 void AlStateMachine::reset() {
-  state_ = AlState::Init;
+  state_ = ecat::AlState::Init;
   error_ = false;
   error_code_ = 0;
   id_loaded_ = false;
   device_id_ = 0;
 }
 
-void AlStateMachine::on_al_control(AlControl control, std::uint16_t device_id,
+void AlStateMachine::on_al_control(ecat::AlControl control, std::uint16_t device_id,
                                    TransitionHooks& hooks) {
   // Explicit Device ID follows bit5 of every AL Control write; products without it ignore the
   // bit (DS5C1: "not supported", L2335).
@@ -19,7 +19,7 @@ void AlStateMachine::on_al_control(AlControl control, std::uint16_t device_id,
     device_id_ = control.id_request ? device_id : 0;
   }
 
-  const bool wants_init = control.requested == static_cast<std::uint8_t>(AlState::Init);
+  const bool wants_init = control.requested == static_cast<std::uint8_t>(ecat::AlState::Init);
   if (error_) {
     // ETG.1000.6 / ETG SSC: with the error flag set, a request without Error Ind Ack is ignored
     // (state and code stay), except a request for Init, which is always honoured.
@@ -28,20 +28,20 @@ void AlStateMachine::on_al_control(AlControl control, std::uint16_t device_id,
     error_code_ = 0;
   }
 
-  if (!is_defined_state(control.requested)) {
+  if (!ecat::is_defined_state(control.requested)) {
     refuse(traits_.codes.unknown_state, hooks);
     return;
   }
-  apply_request(static_cast<AlState>(control.requested), hooks);
+  apply_request(static_cast<ecat::AlState>(control.requested), hooks);
 }
 
-void AlStateMachine::apply_request(AlState target, TransitionHooks& hooks) {
-  const AlState from = state_;
+void AlStateMachine::apply_request(ecat::AlState target, TransitionHooks& hooks) {
+  const ecat::AlState from = state_;
 
   // Bootstrap hangs off Init only: IB and BI are its only transitions (A6B diagram L3287-L3317;
   // Err80.0 lists PB, SB, OB, BB, BP, BS, BO as invalid, L32966-L33006).
-  if (target == AlState::Boot) {
-    if (from != AlState::Init) {
+  if (target == ecat::AlState::Boot) {
+    if (from != ecat::AlState::Init) {
       refuse(traits_.codes.invalid_transition, hooks);
     } else if (!traits_.has_bootstrap) {
       // A6B Err80.2 / DS5C1 E-802: 0x0013, slave stays in Init (L33038-L33062, L7115).
@@ -52,8 +52,8 @@ void AlStateMachine::apply_request(AlState target, TransitionHooks& hooks) {
     }
     return;
   }
-  if (from == AlState::Boot) {
-    if (target == AlState::Init) go(target, hooks);
+  if (from == ecat::AlState::Boot) {
+    if (target == ecat::AlState::Init) go(target, hooks);
     else refuse(traits_.codes.invalid_transition, hooks);
     return;
   }
@@ -70,14 +70,14 @@ void AlStateMachine::apply_request(AlState target, TransitionHooks& hooks) {
     return;
   }
   switch (target) {
-    case AlState::PreOp: step_up(hooks.check_init_to_preop(), target, hooks); break;
-    case AlState::SafeOp: step_up(hooks.check_preop_to_safeop(), target, hooks); break;
-    case AlState::Op: step_up(hooks.check_safeop_to_op(), target, hooks); break;
+    case ecat::AlState::PreOp: step_up(hooks.check_init_to_preop(), target, hooks); break;
+    case ecat::AlState::SafeOp: step_up(hooks.check_preop_to_safeop(), target, hooks); break;
+    case ecat::AlState::Op: step_up(hooks.check_safeop_to_op(), target, hooks); break;
     default: refuse(traits_.codes.invalid_transition, hooks); break;
   }
 }
 
-void AlStateMachine::step_up(CheckResult result, AlState target, TransitionHooks& hooks) {
+void AlStateMachine::step_up(CheckResult result, ecat::AlState target, TransitionHooks& hooks) {
   if (result.ok()) {
     go(target, hooks);
     return;
@@ -92,17 +92,17 @@ void AlStateMachine::step_up(CheckResult result, AlState target, TransitionHooks
 void AlStateMachine::refuse(std::uint16_t code, TransitionHooks& hooks) {
   error_ = true;
   error_code_ = code;
-  if (state_ == AlState::Op) go(AlState::SafeOp, hooks);
+  if (state_ == ecat::AlState::Op) go(ecat::AlState::SafeOp, hooks);
 }
 
-void AlStateMachine::raise(AlState state, std::uint16_t code, TransitionHooks& hooks) {
+void AlStateMachine::raise(ecat::AlState state, std::uint16_t code, TransitionHooks& hooks) {
   error_ = true;
   error_code_ = code;
   go(state, hooks);
 }
 
-void AlStateMachine::go(AlState to, TransitionHooks& hooks) {
-  const AlState from = state_;
+void AlStateMachine::go(ecat::AlState to, TransitionHooks& hooks) {
+  const ecat::AlState from = state_;
   if (from == to) return;
   state_ = to;
   hooks.entered(from, to);

@@ -11,7 +11,7 @@
 // No allocation, no locks.
 #include <cstdint>
 
-#include "vdrive/firmware/al_state.hpp"
+#include "ethercat/al_state.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
 namespace vdrive::firmware {
@@ -20,7 +20,7 @@ namespace vdrive::firmware {
 // state the slave falls back to (e.g. a bad mailbox configuration leaves it in Init).
 struct CheckResult {
   std::uint16_t code = 0;
-  AlState fallback = AlState::Init;
+  ecat::AlState fallback = ecat::AlState::Init;
 
   static CheckResult pass() { return {}; }
   bool ok() const { return code == 0; }
@@ -35,7 +35,7 @@ public:
   virtual CheckResult check_init_to_boot() = 0;
   virtual CheckResult check_preop_to_safeop() = 0;
   virtual CheckResult check_safeop_to_op() = 0;
-  virtual void entered(AlState from, AlState to) = 0;
+  virtual void entered(ecat::AlState from, ecat::AlState to) = 0;
 };
 
 // The product facts the ESM needs.
@@ -58,13 +58,13 @@ public:
 
   // Applies one AL Control write. `device_id` is what an ID request shows in AL status code
   // (read by the firmware when the request arrives).
-  void on_al_control(AlControl control, std::uint16_t device_id, TransitionHooks& hooks);
+  void on_al_control(ecat::AlControl control, std::uint16_t device_id, TransitionHooks& hooks);
 
   // A failure the slave detects on its own (e.g. mailbox SMs changed while running): fall to
   // `state` with the error flag and `code`, as the product's manual prescribes.
-  void raise(AlState state, std::uint16_t code, TransitionHooks& hooks);
+  void raise(ecat::AlState state, std::uint16_t code, TransitionHooks& hooks);
 
-  AlState state() const { return state_; }
+  ecat::AlState state() const { return state_; }
   bool error() const { return error_; }
   std::uint16_t error_code() const { return error_code_; }
   bool id_loaded() const { return id_loaded_; }
@@ -72,7 +72,7 @@ public:
   // Values for AL Status (0x0130) and AL Status Code (0x0134). While the error flag is set the
   // code register shows the error even if an ID is loaded (A6B L5802-L5924).
   std::uint16_t status_register() const {
-    return AlStatusBits::encode(state_, error_, id_loaded_);
+    return ecat::AlStatusBits::encode(state_, error_, id_loaded_);
   }
   std::uint16_t status_code_register() const {
     if (error_) return error_code_;
@@ -80,15 +80,15 @@ public:
   }
 
 private:
-  void apply_request(AlState target, TransitionHooks& hooks);
-  void step_up(CheckResult result, AlState target, TransitionHooks& hooks);
+  void apply_request(ecat::AlState target, TransitionHooks& hooks);
+  void step_up(CheckResult result, ecat::AlState target, TransitionHooks& hooks);
   // Refused request: error flag with `code`; the state stays, except that Op falls to SafeOp
   // (A6B Err80.0/80.1 L32966-L33037, DS5C1 E-801 L7114, ETG.1000.6).
   void refuse(std::uint16_t code, TransitionHooks& hooks);
-  void go(AlState to, TransitionHooks& hooks);
+  void go(ecat::AlState to, TransitionHooks& hooks);
 
   EsmTraits traits_;
-  AlState state_ = AlState::Init;
+  ecat::AlState state_ = ecat::AlState::Init;
   bool error_ = false;
   std::uint16_t error_code_ = 0;
   bool id_loaded_ = false;

@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "common/clock.hpp"
-#include "vdrive/firmware/al_state.hpp"
+#include "ethercat/al_state.hpp"
 #include "vdrive/firmware/al_state_machine.hpp"
 
 namespace vdrive::od { class ObjectStore; }
@@ -35,8 +35,8 @@ public:
   virtual void on_events(std::uint32_t /*events*/, Nanos /*now*/) {}
 
   // Checks before an upward transition; the first failing module's result is reported.
-  virtual CheckResult check_transition(AlState /*from*/, AlState /*to*/) { return CheckResult::pass(); }
-  virtual void entered(AlState /*from*/, AlState /*to*/, Nanos /*now*/) {}
+  virtual CheckResult check_transition(ecat::AlState /*from*/, ecat::AlState /*to*/) { return CheckResult::pass(); }
+  virtual void entered(ecat::AlState /*from*/, ecat::AlState /*to*/, Nanos /*now*/) {}
 
   // Control power on: the store was just reset to defaults; load what the drive keeps in
   // non-volatile memory (stored parameters) and forget RAM state.
@@ -49,7 +49,7 @@ public:
   // firmware applies it (AL state fallback + code) after the call that set it.
   struct Fault {
     std::uint16_t code = 0;
-    AlState state = AlState::Init;
+    ecat::AlState state = ecat::AlState::Init;
   };
   bool take_fault(Fault& out) {
     if (fault_.code == 0) return false;
@@ -59,7 +59,7 @@ public:
   }
 
 protected:
-  void raise_fault(std::uint16_t code, AlState state) { fault_ = {code, state}; }
+  void raise_fault(std::uint16_t code, ecat::AlState state) { fault_ = {code, state}; }
 
 private:
   Fault fault_;

@@ -8,7 +8,7 @@ namespace {
 // Bytes of ESC memory an SM occupies: control bits 1:0 = 00 is the 3-buffer mode, which uses
 // three consecutive buffers of `length` bytes; mailbox mode (10) uses one.
 std::uint32_t footprint(const SmChannel& sm) {
-  const bool buffered = (sm.control & esc::reg::sm::kModeMask) == esc::reg::sm::kModeBuffered;
+  const bool buffered = (sm.control & ecat::reg::sm::kModeMask) == ecat::reg::sm::kModeBuffered;
   return buffered ? 3u * sm.length : sm.length;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Typed PDI access for the firmware: little-endian register reads/writes over esc::Esc's
-// pdi_read/pdi_write (addresses from esc_model/registers.hpp). Everything goes through
+// pdi_read/pdi_write (addresses from ethercat/registers.hpp). Everything goes through
 // the PDI so PDI side effects happen exactly as on silicon (reading AL Control clears its event,
 // reading an SM activation register clears the "SM changed" event).
 // No allocation, no locks: safe on the frame path.
@@ -9,13 +9,14 @@
 #include <span>
 
 #include "esc_model/esc.hpp"
-#include "esc_model/registers.hpp"
+#include "ethercat/little_endian.hpp"
+#include "ethercat/registers.hpp"
 
 namespace vdrive::firmware {
 
-// Register addresses and bits: the ESC's own map (esc_model/registers.hpp).
-namespace reg = esc::reg;
-namespace al_event = esc::reg::al_event;
+// Register addresses and bits: the EtherCAT register map (ethercat/registers.hpp).
+namespace reg = ecat::reg;
+namespace al_event = ecat::reg::al_event;
 
 // One SyncManager's channel registers as the PDI reads them (0x0800 + 8n .. +7).
 struct SmChannel {
@@ -48,13 +49,12 @@ public:
   std::uint16_t read_u16(std::uint16_t address) {
     std::array<std::uint8_t, 2> b{};
     esc_.pdi_read(address, b);
-    return static_cast<std::uint16_t>(b[0] | (b[1] << 8));
+    return ecat::get_le16(b.data());
   }
   std::uint32_t read_u32(std::uint16_t address) {
     std::array<std::uint8_t, 4> b{};
     esc_.pdi_read(address, b);
-    return static_cast<std::uint32_t>(b[0]) | (static_cast<std::uint32_t>(b[1]) << 8) |
-           (static_cast<std::uint32_t>(b[2]) << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
+    return ecat::get_le32(b.data());
   }
   void write_u8(std::uint16_t address, std::uint8_t value) {
     const std::array<std::uint8_t, 1> b{value};
@@ -64,14 +64,13 @@ public:
   void read(std::uint16_t address, std::span<std::uint8_t> out) { esc_.pdi_read(address, out); }
   void write(std::uint16_t address, std::span<const std::uint8_t> in) { esc_.pdi_write(address, in); }
   void write_u16(std::uint16_t address, std::uint16_t value) {
-    const std::array<std::uint8_t, 2> b{static_cast<std::uint8_t>(value),
-                                        static_cast<std::uint8_t>(value >> 8)};
+    std::array<std::uint8_t, 2> b{};
+    ecat::put_le16(b.data(), value);
     esc_.pdi_write(address, b);
   }
   void write_u32(std::uint16_t address, std::uint32_t value) {
-    const std::array<std::uint8_t, 4> b{
-        static_cast<std::uint8_t>(value), static_cast<std::uint8_t>(value >> 8),
-        static_cast<std::uint8_t>(value >> 16), static_cast<std::uint8_t>(value >> 24)};
+    std::array<std::uint8_t, 4> b{};
+    ecat::put_le32(b.data(), value);
     esc_.pdi_write(address, b);
   }
 

@@ -81,7 +81,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     if (profile.modes.supported_drive_modes != 0 && !profile.modes.modes.empty()) {
       auto drive = std::make_unique<drive_module::DriveModule>(
           context, options.plant ? *options.plant : plant::default_plant(profile),
-          [mbx](const coe::Emergency& e) { mbx->post_emergency(e); });
+          [mbx](const ecat::coe::Emergency& e) { mbx->post_emergency(e); });
       drive_module::DriveModule* d = drive.get();
       pd->set_application([d](Nanos now) { d->after_outputs(now); }, [d](Nanos now) { d->before_inputs(now); });
       pd->on_outputs_mapped([d](const pdo::ResolvedMapping& rx) { d->outputs_mapped(rx); });
@@ -115,7 +115,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     }
     if (events & al_event::kAlControl) {
       // Reading AL Control clears the event in the ESC.
-      const AlControl control = AlControl::decode(pdi.read_u16(reg::kAlControl));
+      const ecat::AlControl control = ecat::AlControl::decode(pdi.read_u16(reg::kAlControl));
       const std::uint16_t device_id = control.id_request ? device_id_for_request() : 0;
       esm.on_al_control(control, device_id, *this);
       publish();
@@ -133,11 +133,11 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   void on_sm_changed() {
     const std::span<const SmChannel> channels = read_sms();
     if (!mailbox_running) return;
-    const bool boot = esm.state() == AlState::Boot;
+    const bool boot = esm.state() == ecat::AlState::Boot;
     if (check_mailbox_sms(channels, boot ? boot_rules : rules) == MailboxSmFault::Ok) return;
     const std::uint16_t code =
         boot ? codes.invalid_boot_mailbox_config : codes.invalid_mailbox_config;
-    esm.raise(AlState::Init, code, *this);
+    esm.raise(ecat::AlState::Init, code, *this);
     publish();
   }
 
@@ -176,30 +176,30 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   // ---- TransitionHooks ----------------------------------------------------------------------
   CheckResult check_init_to_preop() override {
     if (check_mailbox_sms(read_sms(), rules) != MailboxSmFault::Ok)
-      return {codes.invalid_mailbox_config, AlState::Init};
+      return {codes.invalid_mailbox_config, ecat::AlState::Init};
     return CheckResult::pass();
   }
   CheckResult check_init_to_boot() override {
     if (check_mailbox_sms(read_sms(), boot_rules) != MailboxSmFault::Ok)
-      return {codes.invalid_boot_mailbox_config, AlState::Init};
+      return {codes.invalid_boot_mailbox_config, ecat::AlState::Init};
     return CheckResult::pass();
   }
   // The modules check what they own: SM2/SM3 and PDO sizes, sync mode and cycle time, DC
   // activation, watchdog, PLL lock (PreOp->SafeOp); outputs valid (SafeOp->Op).
-  CheckResult check_modules(AlState from, AlState to) {
+  CheckResult check_modules(ecat::AlState from, ecat::AlState to) {
     for (auto& m : modules) {
       const CheckResult r = m->check_transition(from, to);
       if (!r.ok()) return r;
     }
     return CheckResult::pass();
   }
-  CheckResult check_preop_to_safeop() override { return check_modules(AlState::PreOp, AlState::SafeOp); }
-  CheckResult check_safeop_to_op() override { return check_modules(AlState::SafeOp, AlState::Op); }
+  CheckResult check_preop_to_safeop() override { return check_modules(ecat::AlState::PreOp, ecat::AlState::SafeOp); }
+  CheckResult check_safeop_to_op() override { return check_modules(ecat::AlState::SafeOp, ecat::AlState::Op); }
 
-  void entered(AlState from, AlState to) override {
+  void entered(ecat::AlState from, ecat::AlState to) override {
     // The mailbox runs in PreOp, SafeOp, Op and Boot. Going to Init stops it and forgets its
     // state; the ESC's SyncManagers are left as they are (the master reconfigures them).
-    mailbox_running = to != AlState::Init;
+    mailbox_running = to != ecat::AlState::Init;
     for (auto& m : modules) m->entered(from, to, now_);
   }
   Nanos now_ = 0;  // time of the event being serviced, for entered()

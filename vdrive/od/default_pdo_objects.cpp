@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "ethercat/little_endian.hpp"
+#include "ethercat/pdo_mapping_entry.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
 namespace vdrive::od {
@@ -18,16 +20,13 @@ ObjectDesc* find_object(std::vector<ObjectDesc>& objects, std::uint16_t index) {
 }
 
 std::uint32_t default_u32(const EntryDesc& e) {
-  std::uint32_t v = 0;
-  for (std::size_t i = 0; i < e.default_value.size() && i < 4; ++i)
-    v |= static_cast<std::uint32_t>(e.default_value[i]) << (8 * i);
-  return v;
+  const std::span<const std::uint8_t> bytes(e.default_value);
+  return static_cast<std::uint32_t>(ecat::get_le(bytes.first(std::min<std::size_t>(bytes.size(), 4))));
 }
 
 void set_default(EntryDesc& e, std::uint32_t value) {
   e.default_value.assign(std::max<std::uint32_t>(e.value_bytes, 1), 0);
-  for (std::size_t i = 0; i < e.default_value.size() && i < 4; ++i)
-    e.default_value[i] = static_cast<std::uint8_t>(value >> (8 * i));
+  ecat::put_le(std::span(e.default_value).first(std::min<std::size_t>(e.default_value.size(), 4)), value);
   // The factory value must be one the drive accepts back.
   if (e.max && *e.max < static_cast<std::int64_t>(value)) e.max = value;
   if (e.min && *e.min > static_cast<std::int64_t>(value)) e.min = value;
@@ -62,8 +61,7 @@ void apply_mapping(std::vector<ObjectDesc>& objects, const profile::PdoSpec& pdo
   if (!object || !table_lists_nothing(*object) || pdo.entries.empty()) return;
   std::vector<std::uint32_t> values;
   for (const profile::PdoEntrySpec& e : pdo.entries)
-    values.push_back(static_cast<std::uint32_t>(e.index) << 16 |
-                     static_cast<std::uint32_t>(e.subindex) << 8 | e.bit_length);
+    values.push_back(ecat::PdoMappingEntry::encode(e.index, e.subindex, static_cast<std::uint8_t>(e.bit_length)));
   fill(*object, values, product);
 }
 

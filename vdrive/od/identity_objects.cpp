@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "ethercat/little_endian.hpp"
+
 namespace vdrive::od {
 
 namespace {
@@ -41,8 +43,7 @@ EntryDesc& entry_at(ObjectDesc& object, std::uint8_t subindex, std::string_view 
 
 void set_u32(EntryDesc& e, std::uint32_t value) {
   e.default_value.assign(e.value_bytes, 0);
-  for (std::size_t i = 0; i < e.default_value.size() && i < 4; ++i)
-    e.default_value[i] = static_cast<std::uint8_t>(value >> (8 * i));
+  ecat::put_le(std::span(e.default_value).first(std::min<std::size_t>(e.default_value.size(), 4)), value);
 }
 
 // A string entry sized to exactly the profile's text, so a read returns just that text.

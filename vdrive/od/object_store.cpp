@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cstring>
 
+#include "ethercat/little_endian.hpp"
+
 namespace vdrive::od {
 
 namespace {
 
-using firmware::AlState;
+using ecat::AlState;
 
 // The access bits that allow reading / writing in `state`. SDO runs in PreOp, SafeOp and Op; Init
 // is treated as PreOp so the firmware and tools can read the dictionary before the mailbox runs.
@@ -43,8 +45,7 @@ std::size_t stored_length(const EntryDesc& e, const std::uint8_t* value) {
 
 // A little-endian integer of e.value_bytes bytes, sign-extended for signed types.
 std::int64_t decode(const EntryDesc& e, std::span<const std::uint8_t> data) {
-  std::uint64_t raw = 0;
-  for (std::size_t i = 0; i < data.size() && i < 8; ++i) raw |= std::uint64_t{data[i]} << (8 * i);
+  std::uint64_t raw = ecat::get_le(data);
   if (is_signed(e.type) && data.size() < 8) {
     const unsigned bits = static_cast<unsigned>(8 * data.size());
     if (raw & (std::uint64_t{1} << (bits - 1))) raw |= ~std::uint64_t{0} << bits;

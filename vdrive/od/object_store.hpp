@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "vdrive/firmware/al_state.hpp"
+#include "ethercat/al_state.hpp"
 #include "vdrive/od/dictionary.hpp"
 #include "vdrive/od/sdo_abort.hpp"
 
@@ -22,9 +22,9 @@ public:
 
   // SDO access to one entry. `out` receives the value's bytes (little-endian); `written` its size.
   SdoAbort read(std::uint16_t index, std::uint8_t subindex, std::span<std::uint8_t> out,
-                std::size_t& written, firmware::AlState state) const;
+                std::size_t& written, ecat::AlState state) const;
   SdoAbort write(std::uint16_t index, std::uint8_t subindex, std::span<const std::uint8_t> data,
-                 firmware::AlState state);
+                 ecat::AlState state);
 
   // Firmware-side access: no state or access checks (the drive updates its own ro objects).
   std::span<std::uint8_t> raw(const EntryDesc& entry) {

@@ -7,6 +7,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "ethercat/little_endian.hpp"
 #include "vdrive/profile/yaml_map_reader.hpp"
 
 namespace vdrive::od {
@@ -152,8 +153,7 @@ std::pair<std::int64_t, std::int64_t> type_range(DataType type) {
 
 std::vector<std::uint8_t> little_endian(std::int64_t value, std::size_t bytes) {
   std::vector<std::uint8_t> out(bytes);
-  const auto bits = static_cast<std::uint64_t>(value);
-  for (std::size_t i = 0; i < bytes; ++i) out[i] = static_cast<std::uint8_t>(bits >> (8 * i));
+  ecat::put_le(out, static_cast<std::uint64_t>(value));
   return out;
 }
 

@@ -5,14 +5,16 @@
 #include <limits>
 #include <map>
 
+#include "ethercat/registers.hpp"
 #include "vdrive/network/network.hpp"
 
 namespace vdrive::runtime {
 namespace {
 
-constexpr std::uint16_t kAlStatus = 0x0130, kAlStatusCode = 0x0134;
-constexpr std::uint16_t kErrorCountersFirst = 0x0300, kErrorCountersLast = 0x030C;
-constexpr std::uint16_t kAlErrorFlag = 0x10;
+constexpr std::uint16_t kAlStatus = ecat::reg::kAlStatus, kAlStatusCode = ecat::reg::kAlStatusCode;
+constexpr std::uint16_t kErrorCountersFirst = ecat::reg::kRxErrorCounter,
+                        kErrorCountersLast = ecat::reg::kErrorCountersLast;
+constexpr std::uint16_t kAlErrorFlag = ecat::reg::kAlErrorFlag;
 constexpr std::size_t kSlavesShownOneByOne = 8;
 
 std::uint16_t peek16(esc::Esc& esc, std::uint16_t address) {

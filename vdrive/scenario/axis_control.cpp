@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numbers>
 
+#include "ethercat/pdo_mapping_entry.hpp"
 #include "master/master.hpp"
 #include "master/process_data.hpp"
 
@@ -12,7 +13,7 @@ namespace vdrive::scenario {
 namespace {
 
 constexpr std::uint32_t entry(std::uint16_t index, std::uint8_t sub, std::uint8_t bits) {
-  return static_cast<std::uint32_t>(index) << 16 | static_cast<std::uint32_t>(sub) << 8 | bits;
+  return ecat::PdoMappingEntry::encode(index, sub, bits);
 }
 constexpr std::uint32_t kOutputs[] = {entry(0x6040, 0, 16), entry(0x6060, 0, 8), entry(0x607A, 0, 32),
                                       entry(0x60FF, 0, 32), entry(0x6071, 0, 16)};

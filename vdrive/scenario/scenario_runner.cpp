@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "ethercat/registers.hpp"
 #include "master/cyclic_task.hpp"
 #include "master/dc.hpp"
 #include "master/master.hpp"
@@ -14,11 +15,11 @@
 #include "vdrive/drive/object_ref.hpp"
 #include "vdrive/fault/fault_injector.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
+#include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/od/object_store.hpp"
 #include "vdrive/scenario/axis_control.hpp"
 #include "vdrive/scenario/event_log.hpp"
-#include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/scenario/pcapng_writer.hpp"
 #include "vdrive/scenario/realtime_wire.hpp"
 #include "vdrive/scenario/trace_writer.hpp"
@@ -27,7 +28,7 @@
 namespace vdrive::scenario {
 namespace {
 
-constexpr std::uint16_t kAlStatus = 0x0130, kAlStatusCode = 0x0134;
+constexpr std::uint16_t kAlStatus = ecat::reg::kAlStatus, kAlStatusCode = ecat::reg::kAlStatusCode;
 constexpr std::uint64_t kSafeOpCycles = 100;  // cyclic frames in Safe-Op before Op is requested
 constexpr Nanos kMailboxTimeout = 20'000'000;
 

@@ -8,7 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/fault/fault_injector.hpp"
 #include "vdrive/network/network.hpp"
@@ -17,7 +17,7 @@
 namespace vdrive::telemetry {
 namespace {
 
-constexpr std::uint16_t kAlStatus = 0x0130, kAlStatusCode = 0x0134;
+constexpr std::uint16_t kAlStatus = ecat::reg::kAlStatus, kAlStatusCode = ecat::reg::kAlStatusCode;
 constexpr std::size_t kMaxWatchedFaults = 64;
 
 std::uint16_t peek16(esc::Esc& e, std::uint16_t a) {
@@ -151,8 +151,8 @@ void Sampler::sample(Nanos now) {
       b.frames_dropped = load(sources_.counters->dropped);
       b.send_failed = load(sources_.counters->send_failed);
     }
-    b.rx_errors = sum_bytes(e, esc::reg::kRxErrorCounter, esc::reg::kRxErrorCounter + 8);
-    b.lost_links = sum_bytes(e, esc::reg::kLostLinkCounter, esc::reg::kLostLinkCounterEnd);
+    b.rx_errors = sum_bytes(e, ecat::reg::kRxErrorCounter, ecat::reg::kRxErrorCounter + 8);
+    b.lost_links = sum_bytes(e, ecat::reg::kLostLinkCounter, ecat::reg::kLostLinkCounterEnd);
     b.samples_dropped = dropped();
     b.turnaround_last = t.last;
     b.turnaround_min = t.min;

@@ -14,7 +14,7 @@
 namespace vdrive::drive {
 namespace {
 
-using firmware::coe::Emergency;
+using ecat::coe::Emergency;
 constexpr Nanos kSecond = 1'000'000'000;
 
 struct A6bBench {
@@ -31,7 +31,7 @@ struct A6bBench {
   std::vector<std::uint8_t> sdo_read(std::uint16_t index, std::uint8_t sub) {
     std::array<std::uint8_t, 64> buf{};
     std::size_t n = 0;
-    EXPECT_EQ(store.read(index, sub, buf, n, firmware::AlState::PreOp), od::SdoAbort::Ok);
+    EXPECT_EQ(store.read(index, sub, buf, n, ecat::AlState::PreOp), od::SdoAbort::Ok);
     return {buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(n)};
   }
   std::uint32_t read_uint(std::uint16_t index, std::uint8_t sub) {
@@ -42,7 +42,7 @@ struct A6bBench {
   }
   od::SdoAbort sdo_write_u8(std::uint16_t index, std::uint8_t sub, std::uint8_t v) {
     const std::array<std::uint8_t, 1> b{v};
-    return store.write(index, sub, b, firmware::AlState::PreOp);
+    return store.write(index, sub, b, ecat::AlState::PreOp);
   }
 
   profile::ProductProfile profile;
@@ -271,7 +271,7 @@ TEST(AlarmA6b, Writing00hTo10F3h03hClearsTheHistoryAndOtherValuesAbort) {
 TEST(AlarmA6b, EmergencyOffWhen10F3h05hBit0IsZero) {
   A6bBench b;
   const std::array<std::uint8_t, 2> flags{0x06, 0x00};
-  ASSERT_EQ(b.store.write(0x10F3, 0x05, flags, firmware::AlState::PreOp), od::SdoAbort::Ok);
+  ASSERT_EQ(b.store.write(0x10F3, 0x05, flags, ecat::AlState::PreOp), od::SdoAbort::Ok);
   b.alarms.raise(b.alarm("24.0"), 0);
   EXPECT_TRUE(b.emcy.empty());              // L4573-L4575, L9076-L9080
   EXPECT_EQ(b.read_uint(0x603F, 0), 0xFF18u);

@@ -17,7 +17,7 @@
 namespace vdrive::drive {
 namespace {
 
-using firmware::coe::Emergency;
+using ecat::coe::Emergency;
 
 profile::ProductProfile tweaked(std::string_view id, const std::function<void(profile::ProductProfile&)>& tweak) {
   profile::ProductProfile p = profile::load_profile(id);

@@ -16,7 +16,7 @@
 namespace vdrive::drive {
 namespace {
 
-using firmware::coe::Emergency;
+using ecat::coe::Emergency;
 
 struct Bench {
   explicit Bench(std::string_view id)
@@ -32,7 +32,7 @@ struct Bench {
   std::uint32_t read_uint(std::uint16_t index, std::uint8_t sub) {
     std::array<std::uint8_t, 8> buf{};
     std::size_t n = 0;
-    EXPECT_EQ(store.read(index, sub, buf, n, firmware::AlState::PreOp), od::SdoAbort::Ok);
+    EXPECT_EQ(store.read(index, sub, buf, n, ecat::AlState::PreOp), od::SdoAbort::Ok);
     std::uint32_t v = 0;
     for (std::size_t i = 0; i < n && i < 4; ++i) v |= std::uint32_t{buf[i]} << (8 * i);
     return v;

@@ -66,7 +66,7 @@ TEST(ParameterStore, UnsavedChangesAreLostAtPowerOn) {
   ASSERT_NE(e, nullptr);
   const std::vector<std::uint8_t> factory = sdo_read(b, e->index, e->subindex).data;
   ASSERT_EQ(sdo_write(b, e->index, e->subindex, le(static_cast<std::uint64_t>(*e->min + 2), 2)).abort, 0u);
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   b.objects.reset_to_defaults();  // what SlaveFirmware::power_on does first
   b.module.power_on(0);
   b.to_preop();

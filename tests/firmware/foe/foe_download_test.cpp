@@ -49,8 +49,8 @@ profile::ProductProfile ds1000a() { return profile::load_profile("ds1000a"); }
 void to_boot(Bench& b) {
   b.configure_sm(0, *b.product.mailbox.boot_rx_offset, *b.product.mailbox.boot_rx_size, 0x26);
   b.configure_sm(1, *b.product.mailbox.boot_tx_offset, *b.product.mailbox.boot_tx_size, 0x22);
-  b.request_state(AlState::Boot);
-  ASSERT_EQ(b.esm.state(), AlState::Boot);
+  b.request_state(ecat::AlState::Boot);
+  ASSERT_EQ(b.esm.state(), ecat::AlState::Boot);
 }
 
 std::string version_object(Bench& b) {
@@ -98,7 +98,7 @@ TEST(FoeDownload, CompleteDownloadInBootChangesTheVersionAfterTheRestart) {
     EXPECT_EQ(last.op, kAck);
     EXPECT_EQ(last.field, (file.size() + 115) / 116) << "every packet of 116 bytes (128 - 12) acknowledged";
     EXPECT_EQ(version_object(b), "V1.00/1.00") << "the new firmware runs only after the restart";
-    b.request_state(AlState::Init);  // Boot -> Init restarts the drive
+    b.request_state(ecat::AlState::Init);  // Boot -> Init restarts the drive
     EXPECT_EQ(version_object(b), "V1.10/1.00");
     const std::string stored = state.path + "/ds1000a-00000000.firmware";
     ASSERT_TRUE(std::filesystem::exists(stored));
@@ -130,7 +130,7 @@ TEST(FoeDownload, FileOfWholePacketsEndsWithAnEmptyPacket) {
   EXPECT_EQ(end.field, 3u);
   EXPECT_TRUE(std::filesystem::exists(stored)) << "the empty packet ended the file: image programmed";
   EXPECT_EQ(version_object(b), "V1.00/1.00");
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   EXPECT_EQ(version_object(b), "V2.03/1.00");
 }
 
@@ -150,7 +150,7 @@ TEST(FoeDownload, RepeatedPacketIsAcknowledgedAgainAndStoredOnce) {
   EXPECT_EQ(last.op, kAck);
   const FoeReply end = foe_reply(b.exchange(kFoE, foe(kData, 4)));  // 348 = 3 full packets
   EXPECT_EQ(end.op, kAck) << "the image checks out: packet 1 was not stored twice";
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   EXPECT_EQ(version_object(b), "V1.20/1.00");
 }
 
@@ -179,7 +179,7 @@ TEST(FoeDownload, FileBeyond256KiBIsDiskFull8003) {
   EXPECT_EQ(r.field, 0x8003u) << "disk full";
   const FoeReply after = foe_reply(b.exchange(kFoE, foe(kData, 2261)));
   EXPECT_EQ(after.field, 0x8004u) << "the error ended the transfer";
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   EXPECT_EQ(version_object(b), "V1.00/1.00");
 }
 
@@ -191,7 +191,7 @@ TEST(FoeDownload, FileOfExactly256KiBIsTaken) {
   const FoeReply r = send_file(b, file);
   EXPECT_EQ(r.op, kAck);
   EXPECT_EQ(r.field, 2260u) << "2259 full packets + 100 bytes";
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   EXPECT_EQ(version_object(b), "V1.30/1.00");
 }
 
@@ -201,7 +201,7 @@ TEST(FoeDownload, OtherFileNameIs8009InBootAnd8002Outside) {
   const FoeReply in_boot = foe_reply(b.exchange(kFoE, foe(kWrq, 0, text("DS1000A-EC_V1.10.efw"))));
   EXPECT_EQ(in_boot.op, kErr);
   EXPECT_EQ(in_boot.field, 0x8009u) << "SSC: not a file for Bootstrap";
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   b.to_preop();
   const FoeReply in_preop = foe_reply(b.exchange(kFoE, foe(kWrq, 0, text("parameters.bin"))));
   EXPECT_EQ(in_preop.op, kErr);
@@ -219,7 +219,7 @@ TEST(FoeDownload, PasswordOtherThanZeroIs800A) {
 TEST(FoeDownload, FirmwareOutsideBootIs8008BootstrapOnly) {
   Bench b(ds1000a());
   b.to_preop();
-  for (const AlState state : {AlState::PreOp, AlState::SafeOp, AlState::Op}) {
+  for (const ecat::AlState state : {ecat::AlState::PreOp, ecat::AlState::SafeOp, ecat::AlState::Op}) {
     SCOPED_TRACE(static_cast<int>(state));
     b.request_state(state);
     ASSERT_EQ(b.esm.state(), state);
@@ -240,7 +240,7 @@ TEST(FoeDownload, NoFoeInInit) {
   Bench b(ds1000a());
   b.configure_sm(0, b.sm0_start(), b.sm0_length(), 0x26);
   b.configure_sm(1, b.sm1_start(), b.sm1_length(), 0x22);
-  ASSERT_EQ(b.esm.state(), AlState::Init);
+  ASSERT_EQ(b.esm.state(), ecat::AlState::Init);
   b.send(message(kFoE, 1, foe(kWrq, 0, text(kName))));
   EXPECT_FALSE(b.receive().has_value());
 }
@@ -268,7 +268,7 @@ TEST(FoeDownload, ForeignOrDamagedImageIsRefusedAndTheOldVersionStays) {
     const FoeReply r = send_file(b, cases[i].file);
     EXPECT_EQ(r.op, kErr) << i;
     EXPECT_EQ(r.field, cases[i].code) << i;
-    b.request_state(AlState::Init);
+    b.request_state(ecat::AlState::Init);
     EXPECT_EQ(version_object(b), "V1.00/1.00") << i;
   }
 }
@@ -307,7 +307,7 @@ TEST(FoeDownload, DownloadAllocatesNothing) {
   EXPECT_EQ(last[last.size() - 2], 1) << "working counter";
   EXPECT_EQ(last[12 + 6], kAck);
   EXPECT_EQ(last[12 + 6 + 2], 10);
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   EXPECT_EQ(version_object(b), "V1.40/1.00");
 }
 

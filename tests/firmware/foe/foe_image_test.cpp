@@ -45,7 +45,7 @@ TEST(FoeImage, ChecksNameVersionShapeLengthAndCrc) {
   flipped.back() ^= 1;
   EXPECT_EQ(check_image(bytes(flipped), "DS1000A-EC", "V1.00/1.00", version, n), ImageCheck::Damaged);
   EXPECT_EQ(check_image(bytes("hello"), "DS1000A-EC", "V1.00/1.00", version, n), ImageCheck::NotAnImage);
-  EXPECT_EQ(error_for(ImageCheck::Damaged), ErrorCode::ChecksumError);
+  EXPECT_EQ(error_for(ImageCheck::Damaged), ecat::foe::ErrorCode::ChecksumError);
   EXPECT_EQ(static_cast<std::uint32_t>(error_for(ImageCheck::WrongProduct)), 0x800Du);
 }
 
@@ -60,8 +60,8 @@ TEST(FoeServerBusy, LastPacketIsBusyUntilProgrammedThenAcknowledged) {
   mailbox_test::Bench b(profile::load_profile("ds1000a"));
   b.configure_sm(0, 0x1000, 128, 0x26);
   b.configure_sm(1, 0x1080, 128, 0x22);
-  b.request_state(AlState::Boot);
-  ASSERT_EQ(b.esm.state(), AlState::Boot);
+  b.request_state(ecat::AlState::Boot);
+  ASSERT_EQ(b.esm.state(), ecat::AlState::Boot);
   FoeServer server(b.context, FoeOptions{b.temp.path + "/busy", kMaxFirmwareBytes, 40'000'000});
   server.set_request_window(128);
   std::array<std::uint8_t, 122> reply{};

@@ -71,7 +71,7 @@ TEST_P(MailboxOnProduct, NoMailboxInInit) {
   ASSERT_EQ(b.send(message(kCoE, 1, vendor_id_request())), 1);
   EXPECT_FALSE(b.receive().has_value());
   // Entering PreOp serves the request that waited in SM0.
-  b.request_state(AlState::PreOp);
+  b.request_state(ecat::AlState::PreOp);
   auto r = b.receive();
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(u32_at(*r, 12), b.product.identity.vendor_id);
@@ -176,7 +176,7 @@ TEST_P(MailboxOnProduct, Sm1EventIsUnmaskedOnlyWhileAMessageWaits) {
 TEST_P(MailboxOnProduct, EmergenciesFromInitAreSentOnPreOpNewestEight) {
   Bench b(load(GetParam()));
   for (std::uint16_t i = 1; i <= 10; ++i) {
-    coe::Emergency e;
+    ecat::coe::Emergency e;
     e.error_code = static_cast<std::uint16_t>(0xFF00 + i);
     e.error_register = 0x80;
     e.data[0] = static_cast<std::uint8_t>(i);
@@ -201,9 +201,9 @@ TEST_P(MailboxOnProduct, BackToInitForgetsTheExchange) {
   Bench b(load(GetParam()));
   b.to_preop();
   ASSERT_EQ(b.send(message(kCoE, 5, vendor_id_request())), 1);
-  b.request_state(AlState::Init);
+  b.request_state(ecat::AlState::Init);
   EXPECT_EQ(b.module.pending_replies(), 0u);
-  b.request_state(AlState::PreOp);
+  b.request_state(ecat::AlState::PreOp);
   b.receive();  // whatever SM1 still held
   ASSERT_EQ(b.send(message(kCoE, 5, vendor_id_request())), 1);
   EXPECT_TRUE(b.receive().has_value()) << "the counter starts afresh after Init";

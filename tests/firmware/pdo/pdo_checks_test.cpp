@@ -105,13 +105,13 @@ TEST(PdoWatchdogSetting, A6bNeedsTwoCyclesOrTwoMillisecondsInFreeRun) {
 }
 
 TEST(PdoMappingEntry, DecodesIndexSubindexBits) {
-  const MappingEntry e = MappingEntry::decode(0x60FE0120);  // DS1000A 1600h 60FE:01 32 bit
+  const ecat::PdoMappingEntry e = ecat::PdoMappingEntry::decode(0x60FE0120);  // DS1000A 1600h 60FE:01 32 bit
   EXPECT_EQ(e.index, 0x60FE);
   EXPECT_EQ(e.subindex, 0x01);
   EXPECT_EQ(e.bits, 0x20);
   EXPECT_FALSE(e.is_gap());
-  EXPECT_EQ(MappingEntry::encode(0x6040, 0, 16), 0x60400010u);
-  EXPECT_TRUE(MappingEntry::decode(0x00000008).is_gap());
+  EXPECT_EQ(ecat::PdoMappingEntry::encode(0x6040, 0, 16), 0x60400010u);
+  EXPECT_TRUE(ecat::PdoMappingEntry::decode(0x00000008).is_gap());
 }
 
 TEST(PdoLimits, ManualsLimits) {
@@ -120,8 +120,8 @@ TEST(PdoLimits, ManualsLimits) {
   EXPECT_EQ(a6b.tx.max_assigned, 4);         // L6892-L7000
   EXPECT_EQ(a6b.rx.max_entries, 32);         // L7064-L7077
   EXPECT_EQ(a6b.wrong_state_abort, od::SdoAbort::SubindexCannotBeWritten);
-  EXPECT_TRUE(a6b.writable_in(AlState::PreOp));
-  EXPECT_FALSE(a6b.writable_in(AlState::SafeOp));
+  EXPECT_TRUE(a6b.writable_in(ecat::AlState::PreOp));
+  EXPECT_FALSE(a6b.writable_in(ecat::AlState::SafeOp));
   const PdoLimits ds1000a = limits_for(profile::load_profile("ds1000a"));
   EXPECT_EQ(ds1000a.rx.max_assigned, 1);     // 1C12h range 0-1 (L4673-L4684)
   EXPECT_EQ(ds1000a.tx.max_entries, 10);     // L4455-L4475

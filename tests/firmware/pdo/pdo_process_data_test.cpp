@@ -41,10 +41,10 @@ protected:
   void to_safeop() {
     b.mailbox_layout();
     b.go(kPreOp);
-    ASSERT_EQ(b.esm.state(), AlState::PreOp);
+    ASSERT_EQ(b.esm.state(), ecat::AlState::PreOp);
     b.process_data_layout(kA6bOut, kA6bIn);
     b.go(kSafeOp);
-    ASSERT_EQ(b.esm.state(), AlState::SafeOp) << std::hex << b.esm.error_code();
+    ASSERT_EQ(b.esm.state(), ecat::AlState::SafeOp) << std::hex << b.esm.error_code();
   }
   std::span<std::uint8_t> outputs() { return test::WireBench::data_of(lrw).subspan(0, kA6bOut); }
   std::span<std::uint8_t> inputs() { return test::WireBench::data_of(lrw).subspan(kA6bOut, kA6bIn); }
@@ -64,7 +64,7 @@ TEST_F(A6bProcessData, OutputsReachTheObjectsOnlyInOp) {
   EXPECT_EQ(get(b.value(0x6040, 0)), 0u) << "outputs are not valid in SafeOp";
 
   b.go(kOp);
-  ASSERT_EQ(b.esm.state(), AlState::Op);
+  ASSERT_EQ(b.esm.state(), ecat::AlState::Op);
   EXPECT_EQ(b.run(lrw), 3);
   EXPECT_EQ(get(b.value(0x6040, 0)), 0x000Fu);
   EXPECT_EQ(get(b.value(0x6060, 0)), 8u);
@@ -100,7 +100,7 @@ TEST_F(A6bProcessData, InputsAppearInTheFrameFromSafeOp) {
   put(b.value(0x6064, 0), 0xCAFE0001);
   b.process_data_layout(kA6bOut, kA6bIn);
   b.go(kSafeOp);
-  ASSERT_EQ(b.esm.state(), AlState::SafeOp);
+  ASSERT_EQ(b.esm.state(), ecat::AlState::SafeOp);
   EXPECT_EQ(b.run(lrw), 3);
   // 603Fh 16, 6041h 16, 6061h 8, 6064h 32, ...
   EXPECT_EQ(get(inputs().subspan(2, 2)), 0x0237u);
@@ -116,7 +116,7 @@ TEST_F(A6bProcessData, InputsAppearInTheFrameFromSafeOp) {
 TEST_F(A6bProcessData, CyclicPathAllocatesNothing) {
   to_safeop();
   b.go(kOp);
-  ASSERT_EQ(b.esm.state(), AlState::Op);
+  ASSERT_EQ(b.esm.state(), ecat::AlState::Op);
   b.run(lrw);  // warm up
   const long before = test::allocation_count();
   for (int i = 0; i < 200; ++i) {
@@ -134,9 +134,9 @@ TEST_F(A6bProcessData, WatchdogExpiryInOpFallsToSafeOpAndRecovers) {
   b.advance(50'000'000);
   b.run(lrw);
   b.advance(99'000'000);
-  EXPECT_EQ(b.esm.state(), AlState::Op) << "retriggered in time";
+  EXPECT_EQ(b.esm.state(), ecat::AlState::Op) << "retriggered in time";
   b.advance(2'000'000);
-  EXPECT_EQ(b.esm.state(), AlState::SafeOp);
+  EXPECT_EQ(b.esm.state(), ecat::AlState::SafeOp);
   EXPECT_TRUE(b.esm.error());
   EXPECT_EQ(b.esm.error_code(), 0x001B);  // Err80.4
   EXPECT_FALSE(b.module.outputs_valid());
@@ -146,7 +146,7 @@ TEST_F(A6bProcessData, WatchdogExpiryInOpFallsToSafeOpAndRecovers) {
   EXPECT_FALSE(b.esm.error());
   b.run(lrw);
   b.go(kOp);
-  EXPECT_EQ(b.esm.state(), AlState::Op);
+  EXPECT_EQ(b.esm.state(), ecat::AlState::Op);
   outputs()[0] = 0x07;
   b.run(lrw);
   EXPECT_EQ(b.value(0x6040, 0)[0], 0x07);
@@ -162,7 +162,7 @@ protected:
   }
   void expect_refused(std::uint16_t code) {
     b.go(kSafeOp);
-    EXPECT_EQ(b.esm.state(), AlState::PreOp);
+    EXPECT_EQ(b.esm.state(), ecat::AlState::PreOp);
     EXPECT_TRUE(b.esm.error());
     EXPECT_EQ(b.esm.error_code(), code);
   }
@@ -224,7 +224,7 @@ TEST_F(A6bSafeOpCheck, WatchdogShorterThanTwoMillisecondsInFreeRun) {
   b.go(kPreOp | kAck);
   b.write_u16(0x0420, 20);  // 2 ms: accepted
   b.go(kSafeOp);
-  EXPECT_EQ(b.esm.state(), AlState::SafeOp);
+  EXPECT_EQ(b.esm.state(), ecat::AlState::SafeOp);
 }
 
 TEST_F(A6bSafeOpCheck, RemappedOutputsTakeEffectAtSafeOp) {
@@ -233,7 +233,7 @@ TEST_F(A6bSafeOpCheck, RemappedOutputsTakeEffectAtSafeOp) {
   write(0x1600, 0, 1, 1);
   b.process_data_layout(4, kA6bIn);
   b.go(kSafeOp);
-  ASSERT_EQ(b.esm.state(), AlState::SafeOp) << std::hex << b.esm.error_code();
+  ASSERT_EQ(b.esm.state(), ecat::AlState::SafeOp) << std::hex << b.esm.error_code();
   EXPECT_EQ(b.module.output_bytes(), 4);
   b.go(kOp);
   std::vector<std::uint8_t> lrw = test::WireBench::frame(test::kLrw, test::kLogicalOutputs, 4 + kA6bIn);

@@ -33,7 +33,7 @@ SdoAbort sdo_write(ModuleBench& b, std::uint16_t index, std::uint8_t sub,
 TEST(PdoWriteRules, A6bRemapInPreOpIsAccepted) {
   ModuleBench b("a6b");
   b.go(0x0002);
-  ASSERT_EQ(b.esm.state(), AlState::PreOp);
+  ASSERT_EQ(b.esm.state(), ecat::AlState::PreOp);
   EXPECT_EQ(sdo_write(b, 0x1600, 0, u8(0)), SdoAbort::Ok);
   EXPECT_EQ(sdo_write(b, 0x1600, 1, u32(0x60400010)), SdoAbort::Ok);
   EXPECT_EQ(sdo_write(b, 0x1600, 2, u32(0x607A0020)), SdoAbort::Ok);
@@ -54,9 +54,9 @@ TEST(PdoWriteRules, A6bEntriesOnlyWhileCountIsZero) {
 TEST(PdoWriteRules, A6bOutsidePreOpIsRefusedWith06010003) {
   ModuleBench b("a6b");
   const PdoLimits limits = b.module.limits();
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::SafeOp, limits, 0x1C12, 0, u8(0)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::SafeOp, limits, 0x1C12, 0, u8(0)),
             SdoAbort::SubindexCannotBeWritten);
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::Op, limits, 0x1A00, 0, u8(0)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::Op, limits, 0x1A00, 0, u8(0)),
             SdoAbort::SubindexCannotBeWritten);
 }
 
@@ -76,7 +76,7 @@ TEST(PdoWriteRules, AssignmentMustNameAMappingObjectOfItsDirection) {
   // The dictionary's own range (1600h-1603h) answers first over SDO ...
   EXPECT_EQ(sdo_write(b, 0x1C12, 1, u16(0x1A00)), SdoAbort::ValueTooHigh);
   // ... the rule itself, for dictionaries without that range: value range exceeded.
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, b.module.limits(), 0x1C12, 1, u16(0x1A00)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, b.module.limits(), 0x1C12, 1, u16(0x1A00)),
             SdoAbort::ValueRangeExceeded);
 }
 
@@ -98,13 +98,13 @@ TEST(PdoWriteRules, CheckedOnWriteRefusesANonMappableObject) {
   ModuleBench b("ds5c1");  // 1601h/1A01h: empty (00h = 0) from the factory
   PdoLimits limits = b.module.limits();
   limits.mappable_checked_on_write = true;
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, limits, 0x1A01, 1, u32(0x10000020)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, limits, 0x1A01, 1, u32(0x10000020)),
             SdoAbort::NotMappable);  // 1000h Device type
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, limits, 0x1601, 1, u32(0x60410010)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, limits, 0x1601, 1, u32(0x60410010)),
             SdoAbort::NotMappable);  // 6041h Statusword is TxPDO only
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, limits, 0x1601, 1, u32(0x60400008)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, limits, 0x1601, 1, u32(0x60400008)),
             SdoAbort::NotMappable);  // 6040h is 16 bits, not 8
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, limits, 0x1601, 1, u32(0x60400010)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, limits, 0x1601, 1, u32(0x60400010)),
             SdoAbort::Ok);
 }
 
@@ -115,14 +115,14 @@ TEST(PdoWriteRules, CheckedOnWriteCountNeedsEntriesThatExist) {
   limits.mappable_checked_on_write = true;
   EXPECT_EQ(sdo_write(b, 0x1601, 0, u8(0)), SdoAbort::Ok);
   EXPECT_EQ(sdo_write(b, 0x1601, 1, u32(0x60400010)), SdoAbort::Ok);
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, limits, 0x1601, 0, u8(2)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, limits, 0x1601, 0, u8(2)),
             SdoAbort::NotMappable);  // entry 02h is empty
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, limits, 0x1601, 0, u8(1)), SdoAbort::Ok);
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, limits, 0x1601, 0, u8(1)), SdoAbort::Ok);
 }
 
 TEST(PdoWriteRules, Ds1000aOutsidePreOpIsAStateAbort) {
   ModuleBench b("ds1000a");
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::SafeOp, b.module.limits(), 0x1600, 0, u8(0)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::SafeOp, b.module.limits(), 0x1600, 0, u8(0)),
             SdoAbort::WrongState);
 }
 
@@ -141,9 +141,9 @@ TEST(PdoWriteRules, CheckedOnWriteRefusesATooLongMapping) {
   PdoLimits limits = b.module.limits();
   limits.length_checked_on_write = true;
   limits.rx.max_bytes = 8;
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, limits, 0x1600, 0, u8(5)),
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, limits, 0x1600, 0, u8(5)),
             SdoAbort::PdoLengthExceeded);
-  EXPECT_EQ(judge_pdo_write(b.objects, AlState::PreOp, limits, 0x1600, 0, u8(2)), SdoAbort::Ok);
+  EXPECT_EQ(judge_pdo_write(b.objects, ecat::AlState::PreOp, limits, 0x1600, 0, u8(2)), SdoAbort::Ok);
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ TEST(SyncCheck, A6bAcceptsEachCycleOfErr810AndRefusesOthers) {
   for (std::uint32_t c : {0u, 100000u, 300000u, 3000000u, 12000000u}) {
     const SyncDecision d = a6b.check(dc(c, c));
     EXPECT_EQ(d.result.code, 0x0035) << c;
-    EXPECT_EQ(d.result.fallback, AlState::PreOp);
+    EXPECT_EQ(d.result.fallback, ecat::AlState::PreOp);
   }
 }
 
@@ -104,7 +104,7 @@ TEST(SyncCheck, DcActivationOtherThanOffOrSync0IsRefusedWith0030) {
       if (act & 0x01) s.output_sync_type = s.input_sync_type = 0;   // keep the sync types valid
       const SyncDecision d = p.check(s);
       EXPECT_EQ(d.result.code, 0x0030) << id << " 0981h=" << int(act);
-      EXPECT_EQ(d.result.fallback, AlState::PreOp);
+      EXPECT_EQ(d.result.fallback, ecat::AlState::PreOp);
     }
     // Upper bits of 0981h (activation options) do not matter.
     SyncSettings s = dc(1000000, 1000000);

@@ -83,7 +83,7 @@ public:
     const od::EntryDesc* e = dictionary_->find(index, subindex);
     ASSERT_NE(e, nullptr);
     const auto bytes = le(value, std::max(1, e->bit_length / 8));
-    ASSERT_EQ(objects_.write(index, subindex, bytes, AlState::PreOp), od::SdoAbort::Ok)
+    ASSERT_EQ(objects_.write(index, subindex, bytes, ecat::AlState::PreOp), od::SdoAbort::Ok)
         << std::hex << index << ":" << int(subindex);
   }
   std::uint64_t object(std::uint16_t index, std::uint8_t subindex) {
@@ -91,18 +91,18 @@ public:
     if (e == nullptr) return 0;
     std::array<std::uint8_t, 8> buf{};
     std::size_t n = 0;
-    EXPECT_EQ(objects_.read(index, subindex, buf, n, AlState::PreOp), od::SdoAbort::Ok);
+    EXPECT_EQ(objects_.read(index, subindex, buf, n, ecat::AlState::PreOp), od::SdoAbort::Ok);
     std::uint64_t v = 0;
     for (std::size_t i = n; i-- > 0;) v = (v << 8) | buf[i];
     return v;
   }
 
   CheckResult request_safeop() {
-    const CheckResult r = module_->check_transition(AlState::PreOp, AlState::SafeOp);
-    if (r.ok()) enter(AlState::PreOp, AlState::SafeOp);
+    const CheckResult r = module_->check_transition(ecat::AlState::PreOp, ecat::AlState::SafeOp);
+    if (r.ok()) enter(ecat::AlState::PreOp, ecat::AlState::SafeOp);
     return r;
   }
-  void enter(AlState from, AlState to) {
+  void enter(ecat::AlState from, ecat::AlState to) {
     state = to;
     module_->entered(from, to, clock_.now());
   }
@@ -136,7 +136,7 @@ public:
   std::vector<Nanos> cycle_times;
   std::vector<SyncMode> started;
   std::vector<FirmwareModule::Fault> faults;
-  AlState state = AlState::PreOp;
+  ecat::AlState state = ecat::AlState::PreOp;
 
 private:
   void send(Frame& f) {
@@ -241,7 +241,7 @@ TEST(SyncModule, SyncErrorsBeforeSafeOpAreAnsweredWithEachProductsCode) {
     d.program_sync0(c.sync0, c.activation);
     const CheckResult r = d.request_safeop();
     EXPECT_EQ(r.code, c.code) << c.id << " 09A0h=" << c.sync0 << " 0981h=" << int(c.activation);
-    EXPECT_EQ(r.fallback, AlState::PreOp) << c.id;
+    EXPECT_EQ(r.fallback, ecat::AlState::PreOp) << c.id;
     EXPECT_FALSE(d.module().running());
   }
 }
@@ -286,7 +286,7 @@ TEST(SyncModule, NoSync0AfterSafeOpIsNoLockWithin1sThenPreOp) {
   d.run_until(safeop + 1001 * kMs);
   ASSERT_EQ(d.faults.size(), 1u);
   EXPECT_EQ(d.faults[0].code, 0x002D);            // Err80.3
-  EXPECT_EQ(d.faults[0].state, AlState::PreOp);
+  EXPECT_EQ(d.faults[0].state, ecat::AlState::PreOp);
   EXPECT_FALSE(d.module().running());
 }
 
@@ -296,7 +296,7 @@ TEST(SyncModule, A6bLostSync0IsSyncErrorAfter3742hMissesAndCountedIn4F78h) {
   d.sdo_write(0x1C32, 0x02, 1000000);
   d.program_sync0(1000000);
   ASSERT_TRUE(d.request_safeop().ok());
-  d.enter(AlState::SafeOp, AlState::Op);
+  d.enter(ecat::AlState::SafeOp, ecat::AlState::Op);
   d.run_until(d.now() + 40 * kMs);
   ASSERT_TRUE(d.module().locked());
   const std::size_t cycles = d.cycle_times.size();
@@ -304,8 +304,8 @@ TEST(SyncModule, A6bLostSync0IsSyncErrorAfter3742hMissesAndCountedIn4F78h) {
   d.run_until(d.now() + 10 * kMs);
   ASSERT_EQ(d.faults.size(), 1u);
   EXPECT_EQ(d.faults[0].code, 0x002C);
-  EXPECT_EQ(d.faults[0].state, AlState::SafeOp);
-  EXPECT_EQ(d.state, AlState::SafeOp);
+  EXPECT_EQ(d.faults[0].state, ecat::AlState::SafeOp);
+  EXPECT_EQ(d.state, ecat::AlState::SafeOp);
   EXPECT_EQ(d.cycle_times.size(), cycles);
   EXPECT_EQ(d.object(0x4F78, 0x00), 3u);
 }
@@ -377,7 +377,7 @@ TEST(SyncModule, Sync0CycleChangedAfterLockIsPllError) {
   d.run_until(d.now() + 10 * kMs);
   ASSERT_FALSE(d.faults.empty());
   EXPECT_EQ(d.faults[0].code, 0x0032);
-  EXPECT_EQ(d.faults[0].state, AlState::SafeOp);
+  EXPECT_EQ(d.faults[0].state, ecat::AlState::SafeOp);
 }
 
 // ---- other modes ------------------------------------------------------------------------------
@@ -404,7 +404,7 @@ TEST(SyncModule, LeavingSafeOpStopsTheCycle) {
   d.run_until(d.now() + 30 * kMs);
   const std::size_t cycles = d.cycle_times.size();
   EXPECT_GT(cycles, 0u);
-  d.enter(AlState::SafeOp, AlState::PreOp);
+  d.enter(ecat::AlState::SafeOp, ecat::AlState::PreOp);
   d.run_until(d.now() + 30 * kMs);
   EXPECT_EQ(d.cycle_times.size(), cycles);
   EXPECT_EQ(d.module().next_deadline(), std::numeric_limits<Nanos>::max());

@@ -56,7 +56,7 @@ bool AlarmManager::raise_with(const AlarmSpec& alarm, Nanos now, const std::arra
   if (alarm.warning) return true;   // no emergency (A6B L4561), no history (L8935)
   if (history_ && alarm.history) history_->record(alarm);
 
-  firmware::coe::Emergency e;
+  ecat::coe::Emergency e;
   e.error_code = alarm.emergency_code;
   e.error_register = error_register_;   // = 1001h (L4733-L4735)
   if (data) {
@@ -148,7 +148,7 @@ bool AlarmManager::clear_clearable() {
   if (!cleared) return !active();
   refresh();
   publish();
-  if (!active()) emit(firmware::coe::Emergency{});   // all zero: alarm cleared (L4848-L4885)
+  if (!active()) emit(ecat::coe::Emergency{});   // all zero: alarm cleared (L4848-L4885)
   return !active();
 }
 
@@ -179,7 +179,7 @@ void AlarmManager::publish() {
   error_register_ref_.set(error_register_);
 }
 
-void AlarmManager::emit(const firmware::coe::Emergency& e) const {
+void AlarmManager::emit(const ecat::coe::Emergency& e) const {
   if (!sink_) return;
   if (rules_.emergency_gated_by_10f3 && history_ && !history_->emergency_enabled()) return;   // L4573
   sink_(e);

@@ -23,17 +23,17 @@
 #include <vector>
 
 #include "common/clock.hpp"
+#include "ethercat/emergency.hpp"
 #include "vdrive/drive/alarms/alarm_history.hpp"
 #include "vdrive/drive/alarms/alarm_rules.hpp"
 #include "vdrive/drive/drive_context.hpp"
 #include "vdrive/drive/object_ref.hpp"
-#include "vdrive/firmware/coe/emergency.hpp"
 
 namespace vdrive::drive {
 
 class AlarmManager {
 public:
-  using EmergencySink = std::function<void(const firmware::coe::Emergency&)>;
+  using EmergencySink = std::function<void(const ecat::coe::Emergency&)>;
 
   AlarmManager(const DriveContext& ctx, EmergencySink sink);
 
@@ -94,7 +94,7 @@ private:
   bool clear_clearable();
   void refresh();
   void publish();
-  void emit(const firmware::coe::Emergency& e) const;
+  void emit(const ecat::coe::Emergency& e) const;
 
   const DriveContext& ctx_;
   EmergencySink sink_;

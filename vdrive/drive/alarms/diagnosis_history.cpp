@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "ethercat/little_endian.hpp"
 #include "vdrive/drive/alarms/alarm_code.hpp"
 
 namespace vdrive::drive {
@@ -70,8 +71,7 @@ void DiagnosisHistory::publish() {
     // "00 E8 10 FF 02 00 ..." (L9112): Diag code E800h | 603Fh << 16, flags 0002h, text ID main/sub.
     bytes[0] = 0x00;
     bytes[1] = 0xE8;
-    bytes[2] = static_cast<std::uint8_t>(alarm.error_code);
-    bytes[3] = static_cast<std::uint8_t>(alarm.error_code >> 8);
+    ecat::put_le16(bytes, 2, alarm.error_code);
     bytes[4] = 0x02;
     bytes[5] = 0x00;
     // Text ID: high byte main, low byte sub (L9130-L9132). The L9112 example prints 0000h there; we

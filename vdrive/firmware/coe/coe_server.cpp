@@ -1,6 +1,7 @@
 #include "vdrive/firmware/coe/coe_server.hpp"
 
-#include "vdrive/firmware/coe/coe_wire.hpp"
+#include "ethercat/coe.hpp"
+#include "ethercat/little_endian.hpp"
 #include "vdrive/firmware/coe/parameter_store.hpp"
 #include "vdrive/firmware/coe/sdo_info.hpp"
 #include "vdrive/firmware/coe/sdo_server.hpp"
@@ -8,6 +9,10 @@
 #include "vdrive/profile/product_profile.hpp"
 
 namespace vdrive::firmware::coe {
+
+using ecat::coe::kCoeHeaderSize;
+using ecat::coe::Service;
+using ecat::coe::service_of;
 
 namespace {
 constexpr std::uint8_t kCoeSdoInfo = 0x02;  // SII General CoE details bit1
@@ -27,7 +32,7 @@ CoeServer::~CoeServer() = default;
 mailbox::Outcome CoeServer::on_request(std::span<const std::uint8_t> request,
                                        std::span<std::uint8_t> reply, Nanos /*now*/) {
   if (request.size() < kCoeHeaderSize) {
-    return mailbox::Outcome::mailbox_error(mailbox::ErrorCode::SizeTooShort);
+    return mailbox::Outcome::mailbox_error(ecat::mailbox::ErrorCode::SizeTooShort);
   }
   switch (service_of(request)) {
     case Service::SdoRequest:
@@ -39,7 +44,7 @@ mailbox::Outcome CoeServer::on_request(std::span<const std::uint8_t> request,
     default:
       break;
   }
-  return mailbox::Outcome::mailbox_error(mailbox::ErrorCode::ServiceNotSupported);
+  return mailbox::Outcome::mailbox_error(ecat::mailbox::ErrorCode::ServiceNotSupported);
 }
 
 std::size_t CoeServer::next_reply(std::span<std::uint8_t> reply) {

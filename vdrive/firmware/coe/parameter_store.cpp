@@ -10,7 +10,8 @@
 #include <cstring>
 #include <utility>
 
-#include "vdrive/firmware/coe/coe_wire.hpp"
+#include "ethercat/coe.hpp"
+#include "ethercat/little_endian.hpp"
 
 namespace vdrive::firmware::coe {
 
@@ -83,7 +84,7 @@ ParameterStore::ParameterStore(const profile::ProductProfile& profile, od::Objec
   auto command = [this](const od::EntryDesc& e, std::span<const std::uint8_t> data) {
     if (e.subindex == 0) return od::SdoAbort::Ok;  // the store refuses it (read-only)
     if (data.size() != 4) return od::SdoAbort::LengthMismatch;
-    const std::uint32_t value = get_u32(data, 0);
+    const std::uint32_t value = ecat::get_le32(data, 0);
     if (e.index == kStoreParameters) {
       if (value != kSaveSignature) return od::SdoAbort::CannotTransfer;
       return save() ? od::SdoAbort::Ok : od::SdoAbort::CannotTransfer;
@@ -130,25 +131,25 @@ bool ParameterStore::save() {
       const std::span<const std::uint8_t> value = std::as_const(objects_).raw(e);
       const std::size_t n = std::min(value.size(), value_size(e));
       if (at + kEntryHeader + n + kCrcSize > buffer_.size()) return false;
-      put_u16(buffer_, at, e.index);
+      ecat::put_le16(buffer_, at, e.index);
       buffer_[at + 2] = e.subindex;
-      put_u16(buffer_, at + 3, static_cast<std::uint16_t>(n));
+      ecat::put_le16(buffer_, at + 3, static_cast<std::uint16_t>(n));
       std::copy_n(value.begin(), n, buffer_.begin() + static_cast<std::ptrdiff_t>(at + kEntryHeader));
       at += kEntryHeader + n;
       ++count;
     }
   }
   std::memcpy(buffer_.data(), kMagic, sizeof(kMagic));
-  put_u32(buffer_, sizeof(kMagic), count);
-  put_u32(buffer_, at, crc32(buffer_.data(), at));
+  ecat::put_le32(buffer_, sizeof(kMagic), count);
+  ecat::put_le32(buffer_, at, crc32(buffer_.data(), at));
   return write_file(at + kCrcSize);
 }
 
 bool ParameterStore::forget() {
   if (buffer_.size() < kFileHeader + kCrcSize) return false;
   std::memcpy(buffer_.data(), kMagic, sizeof(kMagic));
-  put_u32(buffer_, sizeof(kMagic), 0);
-  put_u32(buffer_, kFileHeader, crc32(buffer_.data(), kFileHeader));
+  ecat::put_le32(buffer_, sizeof(kMagic), 0);
+  ecat::put_le32(buffer_, kFileHeader, crc32(buffer_.data(), kFileHeader));
   return write_file(kFileHeader + kCrcSize);
 }
 
@@ -186,14 +187,14 @@ bool ParameterStore::load() {
   if (longer || length < kFileHeader + kCrcSize) return false;
   if (std::memcmp(buffer_.data(), kMagic, sizeof(kMagic)) != 0) return false;
   const std::size_t body = length - kCrcSize;
-  if (get_u32(buffer_, body) != crc32(buffer_.data(), body)) return false;
-  const std::uint32_t count = get_u32(buffer_, sizeof(kMagic));
+  if (ecat::get_le32(buffer_, body) != crc32(buffer_.data(), body)) return false;
+  const std::uint32_t count = ecat::get_le32(buffer_, sizeof(kMagic));
   std::size_t at = kFileHeader;
   for (std::uint32_t i = 0; i < count; ++i) {
     if (at + kEntryHeader > body) return false;
-    const std::uint16_t index = get_u16(buffer_, at);
+    const std::uint16_t index = ecat::get_le16(buffer_, at);
     const std::uint8_t sub = buffer_[at + 2];
-    const std::size_t n = get_u16(buffer_, at + 3);
+    const std::size_t n = ecat::get_le16(buffer_, at + 3);
     at += kEntryHeader;
     if (at + n > body) return false;
     // Entries the dictionary no longer has, or whose size changed, keep their defaults.

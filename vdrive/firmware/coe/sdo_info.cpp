@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <limits>
 
-#include "vdrive/firmware/coe/coe_wire.hpp"
+#include "ethercat/coe.hpp"
+#include "ethercat/little_endian.hpp"
 #include "vdrive/firmware/coe/parameter_store.hpp"
 #include "vdrive/od/sdo_abort.hpp"
 
 namespace vdrive::firmware::coe {
+
+using ecat::coe::put_coe_header;
+using ecat::coe::Service;
+namespace info = ecat::coe::info;
 
 namespace {
 constexpr std::uint16_t kListCounts = 0, kListAll = 1, kListRx = 2, kListTx = 3, kListBackup = 4,
@@ -40,11 +45,6 @@ std::int64_t type_max(const od::EntryDesc& e) {
   }
   return bits >= 63 ? std::numeric_limits<std::int64_t>::max()
                     : static_cast<std::int64_t>((std::uint64_t{1} << bits) - 1);
-}
-
-void put_le(std::uint8_t* out, std::size_t n, std::int64_t value) {
-  const auto u = static_cast<std::uint64_t>(value);
-  for (std::size_t i = 0; i < n; ++i) out[i] = i < 8 ? static_cast<std::uint8_t>(u >> (8 * i)) : 0;
 }
 }  // namespace
 
@@ -85,20 +85,20 @@ mailbox::Outcome SdoInfo::on_request(std::span<const std::uint8_t> request,
                                      std::span<std::uint8_t> reply) {
   pending_ = Body::None;
   if (request.size() < info::kHeaderSize) {
-    return mailbox::Outcome::mailbox_error(mailbox::ErrorCode::SizeTooShort);
+    return mailbox::Outcome::mailbox_error(ecat::mailbox::ErrorCode::SizeTooShort);
   }
   const auto opcode = static_cast<info::Opcode>(request[2] & 0x7F);
   const std::span<const std::uint8_t> data = request.subspan(info::kHeaderSize);
   switch (opcode) {
     case info::Opcode::GetOdListRequest: {
       if (data.size() < 2) break;
-      const std::uint16_t list_type = get_u16(data, 0);
+      const std::uint16_t list_type = ecat::get_le16(data, 0);
       opcode_ = info::Opcode::GetOdListResponse;
       list_type_ = list_type;
       if (list_type == kListCounts) {
-        put_u16(rendered_, 0, kListCounts);
+        ecat::put_le16(rendered_, 0, kListCounts);
         for (std::uint16_t t = kListAll; t <= kListSettings; ++t) {
-          put_u16(rendered_, 2u * t, static_cast<std::uint16_t>(count(t)));
+          ecat::put_le16(rendered_, 2u * t, static_cast<std::uint16_t>(count(t)));
         }
         pending_ = Body::Rendered;
         size_ = 12;
@@ -114,7 +114,7 @@ mailbox::Outcome SdoInfo::on_request(std::span<const std::uint8_t> request,
     }
     case info::Opcode::GetObjectDescriptionRequest: {
       if (data.size() < 2) break;
-      const od::ObjectDesc* o = dict_.find(get_u16(data, 0));
+      const od::ObjectDesc* o = dict_.find(ecat::get_le16(data, 0));
       if (o == nullptr) {
         return mailbox::Outcome::reply(
             error(reply, static_cast<std::uint32_t>(od::SdoAbort::NoSuchObject)));
@@ -126,7 +126,7 @@ mailbox::Outcome SdoInfo::on_request(std::span<const std::uint8_t> request,
     }
     case info::Opcode::GetEntryDescriptionRequest: {
       if (data.size() < 4) break;
-      const std::uint16_t index = get_u16(data, 0);
+      const std::uint16_t index = ecat::get_le16(data, 0);
       if (dict_.find(index) == nullptr) {
         return mailbox::Outcome::reply(
             error(reply, static_cast<std::uint32_t>(od::SdoAbort::NoSuchObject)));
@@ -146,7 +146,7 @@ mailbox::Outcome SdoInfo::on_request(std::span<const std::uint8_t> request,
           error(reply, static_cast<std::uint32_t>(od::SdoAbort::UnknownCommand)));
   }
   if (pending_ == Body::None) {
-    return mailbox::Outcome::mailbox_error(mailbox::ErrorCode::SizeTooShort);
+    return mailbox::Outcome::mailbox_error(ecat::mailbox::ErrorCode::SizeTooShort);
   }
   offset_ = 0;
   // Fragments hold a whole number of 16-bit indexes (the capacity is rounded down to even).
@@ -169,7 +169,7 @@ std::size_t SdoInfo::fragment(std::span<std::uint8_t> reply) {
   reply[2] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(opcode_) |
                                        (more ? info::kIncomplete : 0));
   reply[3] = 0;
-  put_u16(reply, 4, static_cast<std::uint16_t>(fragments_left_));
+  ecat::put_le16(reply, 4, static_cast<std::uint16_t>(fragments_left_));
   copy_body(offset_, reply.subspan(info::kHeaderSize, n));
   offset_ += n;
   if (fragments_left_ > 0) --fragments_left_;
@@ -186,7 +186,7 @@ void SdoInfo::copy_body(std::size_t offset, std::span<std::uint8_t> out) {
   }
   std::size_t i = 0;
   if (offset == 0 && !out.empty()) {
-    put_u16(out, 0, list_type_);
+    ecat::put_le16(out, 0, list_type_);
     i = 2;
   }
   const auto objects = dict_.objects();
@@ -194,7 +194,7 @@ void SdoInfo::copy_body(std::size_t offset, std::span<std::uint8_t> out) {
     const od::ObjectDesc& o = objects[cursor_object_];
     ++cursor_object_;
     if (!in_list(o, list_type_)) continue;
-    put_u16(out, i, o.index);
+    ecat::put_le16(out, i, o.index);
     i += 2;
   }
 }
@@ -204,8 +204,8 @@ std::size_t SdoInfo::error(std::span<std::uint8_t> reply, std::uint32_t code) {
   put_coe_header(reply, Service::SdoInformation);
   reply[2] = static_cast<std::uint8_t>(info::Opcode::ErrorRequest);
   reply[3] = 0;
-  put_u16(reply, 4, 0);
-  put_u32(reply, info::kHeaderSize, code);
+  ecat::put_le16(reply, 4, 0);
+  ecat::put_le32(reply, info::kHeaderSize, code);
   return info::kHeaderSize + 4;
 }
 
@@ -216,8 +216,8 @@ std::size_t SdoInfo::render_object(const od::ObjectDesc& o) {
   } else if (const od::EntryDesc* first = o.entry(1); first != nullptr) {
     type = static_cast<std::uint16_t>(first->type);  // arrays: the element type
   }
-  put_u16(rendered_, 0, o.index);
-  put_u16(rendered_, 2, type);
+  ecat::put_le16(rendered_, 0, o.index);
+  ecat::put_le16(rendered_, 2, type);
   rendered_[4] = o.max_subindex();
   rendered_[5] = static_cast<std::uint8_t>(o.code);
   std::copy(o.name.begin(), o.name.end(), rendered_.begin() + kObjectFixed);
@@ -230,15 +230,15 @@ std::size_t SdoInfo::render_entry(const od::EntryDesc& e, std::uint8_t value_inf
   // Only what this entry can describe is sent, and the reply's value info says what that is.
   std::uint8_t sent = value_info & (info::kUnitType | info::kDefault);
   if (numeric) sent |= value_info & (info::kMinimum | info::kMaximum);
-  put_u16(rendered_, 0, e.index);
+  ecat::put_le16(rendered_, 0, e.index);
   rendered_[2] = e.subindex;
   rendered_[3] = sent;
-  put_u16(rendered_, 4, static_cast<std::uint16_t>(e.type));
-  put_u16(rendered_, 6, e.bit_length);
-  put_u16(rendered_, 8, e.access);
+  ecat::put_le16(rendered_, 4, static_cast<std::uint16_t>(e.type));
+  ecat::put_le16(rendered_, 6, e.bit_length);
+  ecat::put_le16(rendered_, 8, e.access);
   std::size_t at = kEntryFixed;
   if (sent & info::kUnitType) {
-    put_u16(rendered_, at, 0);
+    ecat::put_le16(rendered_, at, 0);
     at += kUnitTypeSize;
   }
   if (sent & info::kDefault) {
@@ -248,11 +248,11 @@ std::size_t SdoInfo::render_entry(const od::EntryDesc& e, std::uint8_t value_inf
     at += n;
   }
   if (sent & info::kMinimum) {
-    put_le(rendered_.data() + at, n, e.min.value_or(type_min(e)));
+    ecat::put_le(rendered_.data() + at, static_cast<std::uint64_t>(e.min.value_or(type_min(e))), n);
     at += n;
   }
   if (sent & info::kMaximum) {
-    put_le(rendered_.data() + at, n, e.max.value_or(type_max(e)));
+    ecat::put_le(rendered_.data() + at, static_cast<std::uint64_t>(e.max.value_or(type_max(e))), n);
     at += n;
   }
   std::copy(e.name.begin(), e.name.end(), rendered_.begin() + static_cast<std::ptrdiff_t>(at));

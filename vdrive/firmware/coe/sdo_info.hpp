@@ -14,25 +14,11 @@
 #include <span>
 #include <vector>
 
+#include "ethercat/coe.hpp"
 #include "vdrive/firmware/mailbox/protocol.hpp"
 #include "vdrive/od/dictionary.hpp"
 
 namespace vdrive::firmware::coe {
-
-namespace info {
-enum class Opcode : std::uint8_t {
-  GetOdListRequest = 1,
-  GetOdListResponse = 2,
-  GetObjectDescriptionRequest = 3,
-  GetObjectDescriptionResponse = 4,
-  GetEntryDescriptionRequest = 5,
-  GetEntryDescriptionResponse = 6,
-  ErrorRequest = 7,
-};
-inline constexpr std::uint8_t kIncomplete = 0x80;
-inline constexpr std::size_t kHeaderSize = 6;   // CoE header, opcode, reserved, fragments left
-inline constexpr std::uint8_t kUnitType = 0x08, kDefault = 0x10, kMinimum = 0x20, kMaximum = 0x40;
-}  // namespace info
 
 class SdoInfo {
 public:
@@ -58,7 +44,7 @@ private:
   bool has_store_;
   std::vector<std::uint8_t> rendered_;   // an object or entry description, sized at start-up
   Body pending_ = Body::None;
-  info::Opcode opcode_ = info::Opcode::GetOdListResponse;
+  ecat::coe::info::Opcode opcode_ = ecat::coe::info::Opcode::GetOdListResponse;
   std::uint16_t list_type_ = 0;
   std::size_t size_ = 0, offset_ = 0, fragments_left_ = 0;
   // OD-list cursor: the next object to look at.

@@ -2,10 +2,15 @@
 
 #include <algorithm>
 
-#include "vdrive/firmware/coe/coe_wire.hpp"
+#include "ethercat/coe.hpp"
+#include "ethercat/little_endian.hpp"
 #include "vdrive/firmware/coe/parameter_store.hpp"
 
 namespace vdrive::firmware::coe {
+
+using ecat::coe::put_coe_header;
+using ecat::coe::Service;
+namespace sdo = ecat::coe::sdo;
 
 namespace {
 constexpr std::uint8_t kCoeCompleteAccess = 0x20;  // SII General CoE details bit5
@@ -42,12 +47,12 @@ SdoServer::SdoServer(const profile::ProductProfile& profile, od::ObjectStore& ob
 mailbox::Outcome SdoServer::on_request(std::span<const std::uint8_t> request,
                                        std::span<std::uint8_t> reply) {
   if (request.size() < sdo::kSegmentData) {
-    return mailbox::Outcome::mailbox_error(mailbox::ErrorCode::SizeTooShort);
+    return mailbox::Outcome::mailbox_error(ecat::mailbox::ErrorCode::SizeTooShort);
   }
   const auto ccs = static_cast<sdo::Ccs>(request[sdo::kCommand] >> 5);
   const bool initiate = ccs == sdo::Ccs::InitiateDownload || ccs == sdo::Ccs::InitiateUpload;
   if (initiate && request.size() < sdo::kInitiateSize) {
-    return mailbox::Outcome::mailbox_error(mailbox::ErrorCode::SizeTooShort);
+    return mailbox::Outcome::mailbox_error(ecat::mailbox::ErrorCode::SizeTooShort);
   }
   put_coe_header(reply, Service::SdoResponse);
   switch (ccs) {
@@ -61,7 +66,7 @@ mailbox::Outcome SdoServer::on_request(std::span<const std::uint8_t> request,
       transfer_ = Transfer::None;  // the master gave up: no answer
       return mailbox::Outcome::none();
   }
-  const std::uint16_t index = request.size() >= 6 ? get_u16(request, sdo::kIndex) : 0;
+  const std::uint16_t index = request.size() >= 6 ? ecat::get_le16(request, sdo::kIndex) : 0;
   const std::uint8_t sub = request.size() >= 6 ? request[sdo::kSubindex] : 0;
   transfer_ = Transfer::None;
   return mailbox::Outcome::reply(abort(reply, index, sub, od::SdoAbort::UnknownCommand));
@@ -71,24 +76,24 @@ std::size_t SdoServer::abort(std::span<std::uint8_t> reply, std::uint16_t index,
                              std::uint8_t subindex, od::SdoAbort code) {
   put_coe_header(reply, Service::SdoRequest);  // an abort travels as an SDO request (ETG.1000.6)
   reply[sdo::kCommand] = sdo::kAbort;
-  put_u16(reply, sdo::kIndex, index);
+  ecat::put_le16(reply, sdo::kIndex, index);
   reply[sdo::kSubindex] = subindex;
-  put_u32(reply, sdo::kData, static_cast<std::uint32_t>(code));
+  ecat::put_le32(reply, sdo::kData, static_cast<std::uint32_t>(code));
   return sdo::kInitiateSize;
 }
 
 std::size_t SdoServer::download_response(std::span<std::uint8_t> reply, std::uint16_t index,
                                          std::uint8_t subindex) {
   reply[sdo::kCommand] = sdo::kDownloadResponse;
-  put_u16(reply, sdo::kIndex, index);
+  ecat::put_le16(reply, sdo::kIndex, index);
   reply[sdo::kSubindex] = subindex;
-  put_u32(reply, sdo::kData, 0);
+  ecat::put_le32(reply, sdo::kData, 0);
   return sdo::kInitiateSize;
 }
 
 od::SdoAbort SdoServer::read_object(std::uint16_t index, std::uint8_t subindex, bool complete,
                                     std::size_t& size) {
-  const AlState state = esm_.state();
+  const ecat::AlState state = esm_.state();
   if (!complete) return objects_.read(index, subindex, value_, size, state);
   const od::ObjectDesc* object = objects_.dictionary().find(index);
   if (object == nullptr) return od::SdoAbort::NoSuchObject;
@@ -119,7 +124,7 @@ od::SdoAbort SdoServer::read_object(std::uint16_t index, std::uint8_t subindex, 
 
 od::SdoAbort SdoServer::write_object(std::uint16_t index, std::uint8_t subindex, bool complete,
                                      std::span<const std::uint8_t> data) {
-  const AlState state = esm_.state();
+  const ecat::AlState state = esm_.state();
   od::SdoAbort result = od::SdoAbort::Ok;
   if (!complete) {
     result = objects_.write(index, subindex, data, state);
@@ -160,25 +165,25 @@ od::SdoAbort SdoServer::write_object(std::uint16_t index, std::uint8_t subindex,
 std::size_t SdoServer::initiate_upload(std::span<const std::uint8_t> request,
                                        std::span<std::uint8_t> reply) {
   transfer_ = Transfer::None;
-  const std::uint16_t index = get_u16(request, sdo::kIndex);
+  const std::uint16_t index = ecat::get_le16(request, sdo::kIndex);
   const std::uint8_t sub = request[sdo::kSubindex];
   const bool complete = (request[sdo::kCommand] & sdo::kCompleteAccess) != 0;
   if (complete && !complete_access_) return abort(reply, index, sub, complete_access_refusal(profile_));
   std::size_t size = 0;
   const od::SdoAbort r = read_object(index, sub, complete, size);
   if (r != od::SdoAbort::Ok) return abort(reply, index, sub, r);
-  put_u16(reply, sdo::kIndex, index);
+  ecat::put_le16(reply, sdo::kIndex, index);
   reply[sdo::kSubindex] = sub;
   if (size <= 4 && !complete) {
     reply[sdo::kCommand] = static_cast<std::uint8_t>(sdo::kUploadResponse | sdo::kExpedited |
                                                      sdo::kSizeIndicator | ((4 - size) << 2));
-    put_u32(reply, sdo::kData, 0);
+    ecat::put_le32(reply, sdo::kData, 0);
     std::copy_n(value_.begin(), size, reply.begin() + sdo::kData);
     return sdo::kInitiateSize;
   }
   reply[sdo::kCommand] = static_cast<std::uint8_t>(sdo::kUploadResponse | sdo::kSizeIndicator |
                                                    (complete ? sdo::kCompleteAccess : 0));
-  put_u32(reply, sdo::kData, static_cast<std::uint32_t>(size));
+  ecat::put_le32(reply, sdo::kData, static_cast<std::uint32_t>(size));
   const std::size_t chunk = std::min(size, reply.size() - sdo::kNormalData);
   std::copy_n(value_.begin(), chunk, reply.begin() + sdo::kNormalData);
   if (chunk < size) {  // the rest follows in upload segments
@@ -225,7 +230,7 @@ std::size_t SdoServer::initiate_download(std::span<const std::uint8_t> request,
                                          std::span<std::uint8_t> reply) {
   transfer_ = Transfer::None;
   const std::uint8_t command = request[sdo::kCommand];
-  const std::uint16_t index = get_u16(request, sdo::kIndex);
+  const std::uint16_t index = ecat::get_le16(request, sdo::kIndex);
   const std::uint8_t sub = request[sdo::kSubindex];
   const bool complete = (command & sdo::kCompleteAccess) != 0;
   if (complete && !complete_access_) return abort(reply, index, sub, complete_access_refusal(profile_));
@@ -240,7 +245,7 @@ std::size_t SdoServer::initiate_download(std::span<const std::uint8_t> request,
     if (r != od::SdoAbort::Ok) return abort(reply, index, sub, r);
     return download_response(reply, index, sub);
   }
-  const std::size_t size = get_u32(request, sdo::kData);
+  const std::size_t size = ecat::get_le32(request, sdo::kData);
   const std::size_t here = std::min(size, request.size() - sdo::kNormalData);
   if (here == size) {
     const od::SdoAbort r = write_object(index, sub, complete, request.subspan(sdo::kNormalData, size));

@@ -1,15 +1,14 @@
 #include "vdrive/firmware/drive/drive_module.hpp"
 
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "vdrive/firmware/pdi.hpp"
 
 namespace vdrive::firmware::drive_module {
 namespace {
-constexpr std::uint16_t kDcSystemTime = 0x0910;  // local copy of the system time, low 32 bits
 }  // namespace
 
 DriveModule::DriveModule(FirmwareContext& context, const plant::PlantDescription& plant,
-                         std::function<void(const coe::Emergency&)> emergency)
+                         std::function<void(const ecat::coe::Emergency&)> emergency)
     : context_(context), plant_(plant) {
   engine_ = std::make_unique<vdrive::drive::DriveEngine>(context.profile, context.objects, plant_, 0,
                                                          plant.axes.at(0), std::move(emergency));
@@ -19,11 +18,11 @@ DriveModule::~DriveModule() = default;
 
 vdrive::drive::BusState DriveModule::bus() const {
   vdrive::drive::BusState b;
-  const AlState state = context_.esm.state();
-  b.esm_init = state == AlState::Init;
-  b.remote = rank(state) >= rank(AlState::PreOp) && state != AlState::Boot;
+  const ecat::AlState state = context_.esm.state();
+  b.esm_init = state == ecat::AlState::Init;
+  b.remote = rank(state) >= rank(ecat::AlState::PreOp) && state != ecat::AlState::Boot;
   b.al_error_pending = context_.esm.error();
-  b.system_time_ns = context_.pdi.read_u32(kDcSystemTime);
+  b.system_time_ns = context_.pdi.read_u32(reg::kDcSystemTime);  // low 32 bits of the local copy
   return b;
 }
 
@@ -45,7 +44,7 @@ void DriveModule::catch_up(Nanos now) {
   if (engine_->next_step() <= now) engine_->advance_to(now, bus());
 }
 
-void DriveModule::entered(AlState from, AlState to, Nanos now) {
+void DriveModule::entered(ecat::AlState from, ecat::AlState to, Nanos now) {
   catch_up(now);
   const bool by_error = raise_al_error(now);
   engine_->esm_changed(from, to, now, by_error);

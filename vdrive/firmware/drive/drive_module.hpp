@@ -12,9 +12,9 @@
 // Installed for products that list drive modes (6502h != 0).
 #include <memory>
 
+#include "ethercat/emergency.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/drive/drive_engine.hpp"
-#include "vdrive/firmware/coe/emergency.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
 #include "vdrive/firmware/pdo/pdo_mapping.hpp"
 
@@ -24,11 +24,11 @@ class DriveModule final : public FirmwareModule {
 public:
   // `emergency` posts one emergency message (the mailbox module's queue).
   DriveModule(FirmwareContext& context, const plant::PlantDescription& plant,
-              std::function<void(const coe::Emergency&)> emergency);
+              std::function<void(const ecat::coe::Emergency&)> emergency);
   ~DriveModule() override;
 
   void power_on(Nanos now) override;
-  void entered(AlState from, AlState to, Nanos now) override;
+  void entered(ecat::AlState from, ecat::AlState to, Nanos now) override;
   void tick(Nanos now) override;
   Nanos next_deadline() const override;
 

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cctype>
 
+#include "ethercat/little_endian.hpp"
 #include "vdrive/firmware/coe/parameter_store.hpp"
 
 namespace vdrive::firmware::foe {
+
+using ecat::foe::ErrorCode;
 
 namespace {
 constexpr std::size_t kProductAt = 8, kVersionAt = 24, kLengthAt = 40, kCrcAt = 44;
@@ -43,10 +46,10 @@ ImageCheck check_image(std::span<const std::uint8_t> image, std::string_view dev
     return ImageCheck::NotAnImage;
   }
   if (image.size() < kImageHeaderSize) return ImageCheck::Damaged;
-  const std::uint32_t length = get_u32(image, kLengthAt);
+  const std::uint32_t length = ecat::get_le32(image, kLengthAt);
   if (length != image.size() - kImageHeaderSize) return ImageCheck::Damaged;
   const std::span<const std::uint8_t> payload = image.subspan(kImageHeaderSize);
-  if (coe::crc32(payload.data(), payload.size()) != get_u32(image, kCrcAt)) return ImageCheck::Damaged;
+  if (coe::crc32(payload.data(), payload.size()) != ecat::get_le32(image, kCrcAt)) return ImageCheck::Damaged;
   if (field(image, kProductAt) != device_name) return ImageCheck::WrongProduct;
   const std::string_view v = field(image, kVersionAt);
   if (!same_version_shape(v, factory_version) || v.size() > version.size()) return ImageCheck::BadVersion;
@@ -62,8 +65,8 @@ std::string make_image(std::string_view device_name, std::string_view version,
   std::copy_n(device_name.begin(), std::min(device_name.size(), kImageFieldSize), image.begin() + kProductAt);
   std::copy_n(version.begin(), std::min(version.size(), kImageFieldSize), image.begin() + kVersionAt);
   auto* bytes = reinterpret_cast<std::uint8_t*>(image.data());
-  put_u32(std::span<std::uint8_t>(bytes, image.size()), kLengthAt, static_cast<std::uint32_t>(payload.size()));
-  put_u32(std::span<std::uint8_t>(bytes, image.size()), kCrcAt, coe::crc32(payload.data(), payload.size()));
+  ecat::put_le32(std::span<std::uint8_t>(bytes, image.size()), kLengthAt, static_cast<std::uint32_t>(payload.size()));
+  ecat::put_le32(std::span<std::uint8_t>(bytes, image.size()), kCrcAt, coe::crc32(payload.data(), payload.size()));
   image.append(reinterpret_cast<const char*>(payload.data()), payload.size());
   return image;
 }

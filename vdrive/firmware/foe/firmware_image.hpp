@@ -19,7 +19,7 @@
 #include <string>
 #include <string_view>
 
-#include "vdrive/firmware/foe/foe_wire.hpp"
+#include "ethercat/foe.hpp"
 
 namespace vdrive::firmware::foe {
 
@@ -36,7 +36,7 @@ enum class ImageCheck : std::uint8_t {
 };
 
 // The FoE error a failed check is answered with (Ok -> nothing to report).
-ErrorCode error_for(ImageCheck check);
+ecat::foe::ErrorCode error_for(ImageCheck check);
 
 // Checks `image` for the product whose 1008h is `device_name` and whose factory 100Ah text is
 // `factory_version`. On Ok, `version` (capacity kImageFieldSize) receives the new 100Ah text and

@@ -7,17 +7,16 @@
 
 namespace vdrive::firmware::foe {
 
+using ecat::foe::ErrorCode;
+using ecat::foe::kHeaderSize;
+using ecat::foe::kMailboxOverhead;
+using ecat::foe::OpCode;
+using ecat::foe::opcode_of;
+
 namespace {
 constexpr std::uint16_t kSoftwareVersion = 0x100A;
 constexpr std::uint16_t kBusyEntire = 100;  // BUSY reports progress in percent
 
-OpCode opcode_of(std::span<const std::uint8_t> request) { return static_cast<OpCode>(request[0]); }
-
-void header(std::span<std::uint8_t> reply, OpCode op, std::uint32_t field) {
-  reply[0] = static_cast<std::uint8_t>(op);
-  reply[1] = 0;
-  put_u32(reply, 2, field);
-}
 
 // The file name of a RRQ/WRQ: the bytes after the header, without trailing NULs (some masters
 // send a terminated or padded name).
@@ -45,7 +44,7 @@ FoeServer::~FoeServer() = default;
 mailbox::Outcome FoeServer::on_request(std::span<const std::uint8_t> request,
                                        std::span<std::uint8_t> reply, Nanos now) {
   if (request.size() < kHeaderSize) {
-    return mailbox::Outcome::mailbox_error(mailbox::ErrorCode::SizeTooShort);
+    return mailbox::Outcome::mailbox_error(ecat::mailbox::ErrorCode::SizeTooShort);
   }
   switch (opcode_of(request)) {
     case OpCode::WriteRequest: return write_request(request, reply);
@@ -64,11 +63,11 @@ mailbox::Outcome FoeServer::write_request(std::span<const std::uint8_t> request,
   // A new request replaces any transfer in progress.
   phase_ = Phase::Idle;
   received_ = 0;
-  const bool boot = context_.esm.state() == AlState::Boot;
+  const bool boot = context_.esm.state() == ecat::AlState::Boot;
   const bool firmware = file_name(request).starts_with(kFirmwareNamePrefix);
   if (!firmware) return error(reply, boot ? ErrorCode::NotBootstrap : ErrorCode::AccessDenied);
   if (!boot) return error(reply, ErrorCode::BootstrapOnly);
-  if (get_u32(request, 2) != kFirmwarePassword) return error(reply, ErrorCode::NoRights);
+  if (ecat::foe::field_of(request) != kFirmwarePassword) return error(reply, ErrorCode::NoRights);
   phase_ = Phase::Writing;
   packet_ = 0;
   return ack(reply, 0);
@@ -76,7 +75,7 @@ mailbox::Outcome FoeServer::write_request(std::span<const std::uint8_t> request,
 
 mailbox::Outcome FoeServer::data(std::span<const std::uint8_t> request, std::span<std::uint8_t> reply,
                                  Nanos now) {
-  const std::uint32_t packet = get_u32(request, 2);
+  const std::uint32_t packet = ecat::foe::field_of(request);
   if (phase_ == Phase::Programming) {
     return packet == packet_ ? programming(reply, now) : error(reply, ErrorCode::PacketNumberWrong);
   }
@@ -123,8 +122,8 @@ mailbox::Outcome FoeServer::programming(std::span<std::uint8_t> reply, Nanos now
   const Nanos elapsed = programming_time_ - (programmed_at_ - now);
   reply[0] = static_cast<std::uint8_t>(OpCode::Busy);
   reply[1] = 0;
-  put_u16(reply, 2, static_cast<std::uint16_t>(elapsed * kBusyEntire / programming_time_));
-  put_u16(reply, 4, kBusyEntire);
+  ecat::put_le16(reply, ecat::foe::kBusyDoneAt, static_cast<std::uint16_t>(elapsed * kBusyEntire / programming_time_));
+  ecat::put_le16(reply, ecat::foe::kBusyEntireAt, kBusyEntire);
   return mailbox::Outcome::reply(kHeaderSize);
 }
 
@@ -173,7 +172,7 @@ void FoeServer::show_version(std::string_view version) {
 }
 
 mailbox::Outcome FoeServer::ack(std::span<std::uint8_t> reply, std::uint32_t packet) {
-  header(reply, OpCode::Ack, packet);
+  ecat::foe::put_header(reply, OpCode::Ack, packet);
   return mailbox::Outcome::reply(kHeaderSize);
 }
 
@@ -181,7 +180,7 @@ mailbox::Outcome FoeServer::ack(std::span<std::uint8_t> reply, std::uint32_t pac
 mailbox::Outcome FoeServer::error(std::span<std::uint8_t> reply, ErrorCode code) {
   phase_ = Phase::Idle;
   received_ = 0;
-  header(reply, OpCode::Error, static_cast<std::uint32_t>(code));
+  ecat::foe::put_header(reply, OpCode::Error, static_cast<std::uint32_t>(code));
   const std::string_view text = error_text(code);
   const std::size_t n = std::min(text.size(), reply.size() - kHeaderSize);
   std::copy_n(text.begin(), n, reply.begin() + kHeaderSize);

@@ -28,10 +28,10 @@
 #include <string_view>
 #include <vector>
 
+#include "ethercat/foe.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
 #include "vdrive/firmware/foe/firmware_image.hpp"
 #include "vdrive/firmware/foe/firmware_store.hpp"
-#include "vdrive/firmware/foe/foe_wire.hpp"
 #include "vdrive/firmware/mailbox/protocol.hpp"
 
 namespace vdrive::od { struct EntryDesc; }
@@ -80,7 +80,7 @@ private:
   void show_version(std::string_view version);
 
   static mailbox::Outcome ack(std::span<std::uint8_t> reply, std::uint32_t packet);
-  mailbox::Outcome error(std::span<std::uint8_t> reply, ErrorCode code);
+  mailbox::Outcome error(std::span<std::uint8_t> reply, ecat::foe::ErrorCode code);
 
   FirmwareContext& context_;
   FirmwareStore store_;

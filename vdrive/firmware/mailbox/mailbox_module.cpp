@@ -3,13 +3,21 @@
 #include <algorithm>
 #include <array>
 
+#include "ethercat/coe.hpp"
+#include "ethercat/little_endian.hpp"
 #include "vdrive/firmware/coe/coe_server.hpp"
-#include "vdrive/firmware/coe/coe_wire.hpp"
 #include "vdrive/firmware/coe/parameter_store.hpp"
 #include "vdrive/firmware/pdi.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
 namespace vdrive::firmware::mailbox {
+
+using ecat::mailbox::ErrorCode;
+using ecat::mailbox::Header;
+using ecat::mailbox::kErrorPayloadSize;
+using ecat::mailbox::kHeaderSize;
+using ecat::mailbox::next_counter;
+using ecat::mailbox::Type;
 
 namespace {
 constexpr std::uint32_t sm_event(int n) { return 1u << (al_event::kSmShift + n); }
@@ -63,8 +71,8 @@ void MailboxModule::watch_sm1(bool on) {
   sm1_watched_ = on;
 }
 
-void MailboxModule::entered(AlState from, AlState to, Nanos now) {
-  if (to == AlState::Init) {
+void MailboxModule::entered(ecat::AlState from, ecat::AlState to, Nanos now) {
+  if (to == ecat::AlState::Init) {
     // The mailbox stops and forgets its exchange; emergencies stay buffered (A6B L4565).
     running_ = false;
     queue_.clear();
@@ -72,7 +80,7 @@ void MailboxModule::entered(AlState from, AlState to, Nanos now) {
     if (foe_) {
       foe_->reset();
       // Boot -> Init restarts the drive: it runs the firmware downloaded in Boot.
-      if (from == AlState::Boot) foe_->restart();
+      if (from == ecat::AlState::Boot) foe_->restart();
     }
     last_request_counter_ = 0;
     reply_counter_ = 0;
@@ -81,21 +89,21 @@ void MailboxModule::entered(AlState from, AlState to, Nanos now) {
     watch_sm1(false);
     return;
   }
-  if (from != AlState::Init) return;
+  if (from != ecat::AlState::Init) return;
   running_ = true;
-  boot_ = to == AlState::Boot;
+  boot_ = to == ecat::AlState::Boot;
   service(now);
   watch_sm1(has_outgoing());
 }
 
 void MailboxModule::power_on(Nanos now) {
-  entered(AlState::Init, AlState::Init, now);
+  entered(ecat::AlState::Init, ecat::AlState::Init, now);
   emergency_head_ = emergency_count_ = 0;
   coe_->parameters().power_on();
   if (foe_) foe_->power_on();
 }
 
-void MailboxModule::post_emergency(const coe::Emergency& emergency) {
+void MailboxModule::post_emergency(const ecat::coe::Emergency& emergency) {
   if (emergency_count_ == kEmergencySlots) {  // full: the oldest is dropped
     emergency_head_ = (emergency_head_ + 1) % kEmergencySlots;
     --emergency_count_;
@@ -212,17 +220,14 @@ void MailboxModule::queue_error(ErrorCode code) {
   reply_counter_ = next_counter(reply_counter_);
   Header{kErrorPayloadSize, 0, 0, 0, static_cast<std::uint8_t>(Type::Error), reply_counter_}
       .encode(slot);
-  slot[6] = static_cast<std::uint8_t>(kErrorService);
-  slot[7] = static_cast<std::uint8_t>(kErrorService >> 8);
-  slot[8] = static_cast<std::uint8_t>(static_cast<std::uint16_t>(code));
-  slot[9] = static_cast<std::uint8_t>(static_cast<std::uint16_t>(code) >> 8);
+  ecat::mailbox::encode_error_payload(slot.subspan(kHeaderSize, kErrorPayloadSize), code);
   queue_.commit_back(kHeaderSize + kErrorPayloadSize);
 }
 
 // Injected abort_code: the SDO request is not served; an abort of that code answers it, for the
 // request's index and subindex (a segment carries none: 0000h:00).
 bool MailboxModule::inject_abort(std::span<const std::uint8_t> payload) {
-  using namespace coe;
+  using namespace ecat::coe;
   if (faults_.abort_code == 0 || payload.size() < sdo::kCommand + 1 ||
       service_of(payload) != Service::SdoRequest ||
       static_cast<sdo::Ccs>(payload[sdo::kCommand] >> 5) == sdo::Ccs::Abort) {
@@ -235,9 +240,9 @@ bool MailboxModule::inject_abort(std::span<const std::uint8_t> payload) {
   const std::span<std::uint8_t> reply = slot.subspan(kHeaderSize, sdo::kInitiateSize);
   put_coe_header(reply, Service::SdoRequest);  // an abort travels as an SDO request
   reply[sdo::kCommand] = sdo::kAbort;
-  put_u16(reply, sdo::kIndex, addressed ? get_u16(payload, sdo::kIndex) : 0);
+  ecat::put_le16(reply, sdo::kIndex, addressed ? ecat::get_le16(payload, sdo::kIndex) : 0);
   reply[sdo::kSubindex] = addressed ? payload[sdo::kSubindex] : 0;
-  put_u32(reply, sdo::kData, faults_.abort_code);
+  ecat::put_le32(reply, sdo::kData, faults_.abort_code);
   reply_counter_ = next_counter(reply_counter_);
   Header{static_cast<std::uint16_t>(sdo::kInitiateSize), 0, 0, 0, static_cast<std::uint8_t>(Type::CoE),
          reply_counter_}
@@ -250,7 +255,7 @@ bool MailboxModule::inject_abort(std::span<const std::uint8_t> payload) {
 
 // Injected toggle_error: the next upload/download segment response gets the other toggle bit.
 void MailboxModule::inject_toggle_error(std::span<std::uint8_t> coe_payload) {
-  using namespace coe;
+  using namespace ecat::coe;
   if (!faults_.toggle_error || coe_payload.size() <= sdo::kCommand ||
       service_of(coe_payload) != Service::SdoResponse) {
     return;
@@ -282,9 +287,9 @@ bool MailboxModule::send_next() {
     if (!sm1.enabled() || (sm1.status & reg::sm::kMailboxFull) != 0) return false;
     if (duplicate_pending_) return write_duplicate();
     if (emergency_count_ > 0) {
-      std::array<std::uint8_t, kHeaderSize + coe::Emergency::kPayloadSize> message{};
+      std::array<std::uint8_t, kHeaderSize + ecat::coe::Emergency::kPayloadSize> message{};
       reply_counter_ = next_counter(reply_counter_);
-      Header{coe::Emergency::kPayloadSize, 0, 0, 0, static_cast<std::uint8_t>(Type::CoE),
+      Header{ecat::coe::Emergency::kPayloadSize, 0, 0, 0, static_cast<std::uint8_t>(Type::CoE),
              reply_counter_}
           .encode(message);
       emergencies_[emergency_head_].encode(std::span<std::uint8_t>(message).subspan(kHeaderSize));

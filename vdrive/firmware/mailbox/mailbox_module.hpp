@@ -26,11 +26,11 @@
 #include <string>
 #include <vector>
 
-#include "vdrive/firmware/coe/emergency.hpp"
-#include "vdrive/firmware/foe/foe_server.hpp"
+#include "ethercat/emergency.hpp"
+#include "ethercat/mailbox_header.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
+#include "vdrive/firmware/foe/foe_server.hpp"
 #include "vdrive/firmware/mailbox/mailbox_faults.hpp"
-#include "vdrive/firmware/mailbox/mailbox_header.hpp"
 #include "vdrive/firmware/mailbox/reply_queue.hpp"
 
 namespace vdrive::firmware::coe { class CoeServer; }
@@ -57,12 +57,12 @@ public:
 
   std::uint32_t serviced_events() const override;
   void on_events(std::uint32_t events, Nanos now) override;
-  void entered(AlState from, AlState to, Nanos now) override;
+  void entered(ecat::AlState from, ecat::AlState to, Nanos now) override;
   // Stored parameters are loaded; queued replies and emergencies (RAM) are gone.
   void power_on(Nanos now) override;
 
   // Queues an emergency; sent as soon as the mailbox runs and SM1 is free.
-  void post_emergency(const coe::Emergency& emergency);
+  void post_emergency(const ecat::coe::Emergency& emergency);
 
   std::size_t pending_replies() const { return queue_.size(); }
   std::size_t pending_emergencies() const { return emergency_count_; }
@@ -76,9 +76,9 @@ public:
 private:
   void service(Nanos now);
   bool receive_request(Nanos now);
-  void dispatch(const Header& header, std::span<const std::uint8_t> payload, Nanos now);
-  void queue_reply(Protocol& protocol, Type type, std::span<const std::uint8_t> payload, Nanos now);
-  void queue_error(ErrorCode code);
+  void dispatch(const ecat::mailbox::Header& header, std::span<const std::uint8_t> payload, Nanos now);
+  void queue_reply(Protocol& protocol, ecat::mailbox::Type type, std::span<const std::uint8_t> payload, Nanos now);
+  void queue_error(ecat::mailbox::ErrorCode code);
   bool inject_abort(std::span<const std::uint8_t> payload);
   void inject_toggle_error(std::span<std::uint8_t> coe_payload);
   void queue_fragments();
@@ -111,7 +111,7 @@ private:
   std::vector<std::uint8_t> resend_;      // a repeated message while sent_/previous_ rotate
   MailboxFaults faults_;
   bool duplicate_pending_ = false;        // sent_ goes to SM1 once more when it is free
-  std::array<coe::Emergency, kEmergencySlots> emergencies_{};
+  std::array<ecat::coe::Emergency, kEmergencySlots> emergencies_{};
   std::size_t emergency_head_ = 0, emergency_count_ = 0;
 };
 

@@ -8,7 +8,7 @@
 #include <span>
 
 #include "common/clock.hpp"
-#include "vdrive/firmware/mailbox/mailbox_header.hpp"
+#include "ethercat/mailbox_header.hpp"
 
 namespace vdrive::firmware::mailbox {
 
@@ -16,11 +16,11 @@ namespace vdrive::firmware::mailbox {
 // mailbox error reply instead (the request was not understood at the mailbox level).
 struct Outcome {
   std::size_t length = 0;
-  std::optional<ErrorCode> error;
+  std::optional<ecat::mailbox::ErrorCode> error;
 
   static Outcome reply(std::size_t n) { return {n, std::nullopt}; }
   static Outcome none() { return {}; }
-  static Outcome mailbox_error(ErrorCode code) { return {0, code}; }
+  static Outcome mailbox_error(ecat::mailbox::ErrorCode code) { return {0, code}; }
 };
 
 class Protocol {

@@ -23,12 +23,12 @@ PdoLimits from_profile(const profile::PdoRules& r) {
   PdoLimits l;
   l.rx = from_rules(kRxMappingFirst, r.rx_objects, r.max_rx_assigned, r.max_rx_bytes);
   l.tx = from_rules(kTxMappingFirst, r.tx_objects, r.max_tx_assigned, r.max_tx_bytes);
-  // EsmStateSet bits (Init 01h, PreOp 02h, SafeOp 04h, Op 08h, Boot 10h) -> 1 << AlState.
+  // EsmStateSet bits (Init 01h, PreOp 02h, SafeOp 04h, Op 08h, Boot 10h) -> 1 << ecat::AlState.
   l.writable_states = 0;
-  const std::pair<profile::EsmStateSet, AlState> states[] = {
-      {profile::kStateInit, AlState::Init}, {profile::kStatePreOp, AlState::PreOp},
-      {profile::kStateSafeOp, AlState::SafeOp}, {profile::kStateOp, AlState::Op},
-      {profile::kStateBoot, AlState::Boot}};
+  const std::pair<profile::EsmStateSet, ecat::AlState> states[] = {
+      {profile::kStateInit, ecat::AlState::Init}, {profile::kStatePreOp, ecat::AlState::PreOp},
+      {profile::kStateSafeOp, ecat::AlState::SafeOp}, {profile::kStateOp, ecat::AlState::Op},
+      {profile::kStateBoot, ecat::AlState::Boot}};
   for (const auto& [bit, state] : states) {
     if (r.writable_states & bit) l.writable_states |= 1u << static_cast<unsigned>(state);
   }

@@ -8,7 +8,7 @@
 // watchdog_limits_for() from ProductProfile::sync.watchdog; no product is named in code.
 #include <cstdint>
 
-#include "vdrive/firmware/al_state.hpp"
+#include "ethercat/al_state.hpp"
 #include "vdrive/od/sdo_abort.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
@@ -45,15 +45,15 @@ struct DirectionLimits {
 
 struct PdoLimits {
   DirectionLimits rx, tx;
-  // Bit per AlState value (1 << state) in which 1C12h/1C13h/16xxh/1Axxh may be written.
-  std::uint32_t writable_states = 1u << static_cast<unsigned>(AlState::PreOp);
+  // Bit per ecat::AlState value (1 << state) in which 1C12h/1C13h/16xxh/1Axxh may be written.
+  std::uint32_t writable_states = 1u << static_cast<unsigned>(ecat::AlState::PreOp);
   od::SdoAbort wrong_state_abort = od::SdoAbort::SubindexCannotBeWritten;
   bool sub0_must_be_zero = true;      // subindexes 01h+ only while 00h = 0 (ETG.1020)
   bool mappable_checked_on_write = true;  // 06040041h at the SDO write (else at PreOp->SafeOp)
   bool length_checked_on_write = true;    // 06040042h at the SDO write (else at PreOp->SafeOp)
 
   const DirectionLimits& of(Direction d) const { return d == Direction::Rx ? rx : tx; }
-  bool writable_in(AlState s) const {
+  bool writable_in(ecat::AlState s) const {
     return (writable_states & (1u << static_cast<unsigned>(s))) != 0;
   }
 };

@@ -1,5 +1,9 @@
 #include "vdrive/firmware/pdo/pdo_mapping.hpp"
 
+#include <algorithm>
+
+#include "ethercat/little_endian.hpp"
+
 namespace vdrive::firmware::pdo {
 
 std::string_view describe(MappingFault fault) {
@@ -15,7 +19,7 @@ std::string_view describe(MappingFault fault) {
   return "?";
 }
 
-MappingFault check_entry(const od::Dictionary& dictionary, MappingEntry entry, Direction direction,
+MappingFault check_entry(const od::Dictionary& dictionary, ecat::PdoMappingEntry entry, Direction direction,
                          const od::EntryDesc*& out) {
   out = nullptr;
   if (entry.bits == 0) return MappingFault::NoSuchObject;  // an unused (zero) entry maps nothing
@@ -35,11 +39,7 @@ std::uint32_t read_unsigned(const od::ObjectStore& objects, std::uint16_t index,
   const od::EntryDesc* desc = objects.dictionary().find(index, subindex);
   if (desc == nullptr) return 0;
   const std::span<const std::uint8_t> bytes = objects.raw(*desc);
-  std::uint32_t value = 0;
-  for (std::size_t i = 0; i < bytes.size() && i < 4; ++i) {
-    value |= static_cast<std::uint32_t>(bytes[i]) << (8 * i);
-  }
-  return value;
+  return static_cast<std::uint32_t>(ecat::get_le(bytes.first(std::min<std::size_t>(bytes.size(), 4))));
 }
 
 MappingFault append_mapping_object(const od::ObjectStore& objects, std::uint16_t mapping_index,
@@ -47,8 +47,8 @@ MappingFault append_mapping_object(const od::ObjectStore& objects, std::uint16_t
                                    const DirectionLimits& limits, ResolvedMapping& out) {
   if (count > limits.max_entries || count > kMaxEntriesPerPdo) return MappingFault::TooManyEntries;
   for (std::uint8_t sub = 1; sub <= count; ++sub) {
-    const MappingEntry entry =
-        MappingEntry::decode(read_unsigned(objects, mapping_index, sub));
+    const ecat::PdoMappingEntry entry =
+        ecat::PdoMappingEntry::decode(read_unsigned(objects, mapping_index, sub));
     const od::EntryDesc* desc = nullptr;
     const MappingFault fault = check_entry(objects.dictionary(), entry, direction, desc);
     if (fault != MappingFault::Ok) return fault;

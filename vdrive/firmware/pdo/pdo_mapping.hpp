@@ -9,31 +9,12 @@
 #include <cstdint>
 #include <string_view>
 
+#include "ethercat/pdo_mapping_entry.hpp"
 #include "vdrive/firmware/pdo/pdo_limits.hpp"
 #include "vdrive/od/dictionary.hpp"
 #include "vdrive/od/object_store.hpp"
 
 namespace vdrive::firmware::pdo {
-
-// One mapping entry value (16xxh/1Axxh subindex 01h+).
-struct MappingEntry {
-  std::uint16_t index = 0;
-  std::uint8_t subindex = 0;
-  std::uint8_t bits = 0;
-
-  static constexpr MappingEntry decode(std::uint32_t value) {
-    return {static_cast<std::uint16_t>(value >> 16), static_cast<std::uint8_t>(value >> 8),
-            static_cast<std::uint8_t>(value)};
-  }
-  static constexpr std::uint32_t encode(std::uint16_t index, std::uint8_t subindex,
-                                        std::uint8_t bits) {
-    return (static_cast<std::uint32_t>(index) << 16) | (static_cast<std::uint32_t>(subindex) << 8) |
-           bits;
-  }
-  // A gap (index 0) or a CiA 301 dummy entry (index = a basic data type 0001h-0007h) occupies
-  // bits in the image but moves no object.
-  constexpr bool is_gap() const { return index < 0x0008; }
-};
 
 // Why a mapping is not usable, first failure found.
 enum class MappingFault : std::uint8_t {
@@ -49,7 +30,7 @@ enum class MappingFault : std::uint8_t {
 std::string_view describe(MappingFault fault);
 
 // Checks one mapping entry for `direction`; on success `out` is the mapped entry (null for a gap).
-MappingFault check_entry(const od::Dictionary& dictionary, MappingEntry entry, Direction direction,
+MappingFault check_entry(const od::Dictionary& dictionary, ecat::PdoMappingEntry entry, Direction direction,
                          const od::EntryDesc*& out);
 
 // An unsigned value (up to 32 bits, little-endian) from the store; 0 if the entry does not exist.

@@ -1,5 +1,8 @@
 #include "vdrive/firmware/pdo/pdo_write_rules.hpp"
 
+#include <algorithm>
+
+#include "ethercat/little_endian.hpp"
 #include "vdrive/firmware/pdo/pdo_mapping.hpp"
 
 namespace vdrive::firmware::pdo {
@@ -22,11 +25,7 @@ Target classify(const PdoLimits& limits, std::uint16_t index) {
 }
 
 std::uint32_t little_endian(std::span<const std::uint8_t> data) {
-  std::uint32_t value = 0;
-  for (std::size_t i = 0; i < data.size() && i < 4; ++i) {
-    value |= static_cast<std::uint32_t>(data[i]) << (8 * i);
-  }
-  return value;
+  return static_cast<std::uint32_t>(ecat::get_le(data.first(std::min<std::size_t>(data.size(), 4))));
 }
 
 bool names_mapping_object(const od::ObjectStore& objects, const DirectionLimits& limits,
@@ -59,7 +58,7 @@ od::SdoAbort judge_mapping(const od::ObjectStore& objects, const PdoLimits& limi
   if (subindex != 0) {
     const od::EntryDesc* desc = nullptr;
     return answer(limits,
-                  check_entry(objects.dictionary(), MappingEntry::decode(value), direction, desc));
+                  check_entry(objects.dictionary(), ecat::PdoMappingEntry::decode(value), direction, desc));
   }
   if (value > dir.max_entries) return od::SdoAbort::ValueTooHigh;
   // Judge the entries 01h..value as they stand (they were written while 00h was 0).
@@ -93,7 +92,7 @@ od::SdoAbort judge_assignment(const od::ObjectStore& objects, const PdoLimits& l
 
 }  // namespace
 
-od::SdoAbort judge_pdo_write(const od::ObjectStore& objects, AlState state,
+od::SdoAbort judge_pdo_write(const od::ObjectStore& objects, ecat::AlState state,
                              const PdoLimits& limits, std::uint16_t index, std::uint8_t subindex,
                              std::span<const std::uint8_t> data) {
   const Target target = classify(limits, index);

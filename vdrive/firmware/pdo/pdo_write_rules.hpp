@@ -16,7 +16,7 @@ namespace vdrive::firmware::pdo {
 
 // The decision for one write of `data` to index:subindex in `state` (Ok = let the store apply
 // its own checks and store it). Writes to other objects are Ok.
-od::SdoAbort judge_pdo_write(const od::ObjectStore& objects, AlState state,
+od::SdoAbort judge_pdo_write(const od::ObjectStore& objects, ecat::AlState state,
                              const PdoLimits& limits, std::uint16_t index, std::uint8_t subindex,
                              std::span<const std::uint8_t> data);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <span>
 
+#include "ethercat/al_status_code.hpp"
 #include "vdrive/firmware/pdi.hpp"
 #include "vdrive/firmware/pdo/pdo_write_rules.hpp"
 #include "vdrive/firmware/pdo/process_data_sm_check.hpp"
@@ -15,15 +16,15 @@ namespace {
 
 constexpr std::uint32_t kSm2Event = 1u << (al_event::kSmShift + kOutputsSm);
 constexpr std::uint32_t kSm3Event = 1u << (al_event::kSmShift + kInputsSm);
-// ESC DC activation register (0x0981): bit0 cyclic unit, bit1 SYNC0. The sync module owns its
-// rules; the watchdog check only needs to know whether the slave runs on SYNC0.
-constexpr std::uint16_t kDcActivation = 0x0981;
-constexpr std::uint8_t kDcSync0Active = 0x03;
+// The sync module owns the DC rules; the watchdog check only needs to know whether the slave
+// runs on SYNC0 (cyclic unit and SYNC0 both activated).
+constexpr std::uint8_t kDcSync0Active = reg::dc_activation::kCyclicOperation | reg::dc_activation::kSync0;
 
 // ETG.1000.6 codes, used when a product names none for a situation.
-constexpr std::uint16_t kEtgWatchdog = 0x001B, kEtgOutputConfig = 0x001D,
-                        kEtgInputConfig = 0x001E, kEtgWatchdogConfig = 0x001F,
-                        kEtgInputMapping = 0x0024, kEtgOutputMapping = 0x0025;
+namespace code = ecat::al_status_code;
+constexpr std::uint16_t kEtgWatchdog = code::kSyncManagerWatchdog, kEtgOutputConfig = code::kInvalidOutputConfig,
+                        kEtgInputConfig = code::kInvalidInputConfig, kEtgWatchdogConfig = code::kInvalidWatchdogConfig,
+                        kEtgInputMapping = code::kInvalidInputMapping, kEtgOutputMapping = code::kInvalidOutputMapping;
 
 }  // namespace
 
@@ -100,7 +101,7 @@ void ProcessDataModule::exchange_outputs(Nanos now) {
     new_outputs_ = false;
   }
   read_outputs();
-  if (ctx_.esm.state() != AlState::Op || rx_plan_.bytes() == 0) return;
+  if (ctx_.esm.state() != ecat::AlState::Op || rx_plan_.bytes() == 0) return;
   rx_plan_.scatter(std::span<const std::uint8_t>(rx_image_.data(), rx_plan_.bytes()));
   outputs_valid_ = true;
   if (after_outputs_ && fresh) after_outputs_(now);
@@ -119,9 +120,9 @@ void ProcessDataModule::produce_inputs(Nanos now) {
 void ProcessDataModule::on_watchdog() {
   const std::uint8_t status = ctx_.pdi.read_u8(reg::kWatchdogStatusProcessData);
   if ((status & 0x01) != 0) return;  // running again: retriggered before we looked
-  if (ctx_.esm.state() != AlState::Op) return;
+  if (ctx_.esm.state() != ecat::AlState::Op) return;
   outputs_valid_ = false;
-  raise_fault(code_or(codes_.sync_watchdog, kEtgWatchdog), AlState::SafeOp);
+  raise_fault(code_or(codes_.sync_watchdog, kEtgWatchdog), ecat::AlState::SafeOp);
 }
 
 // A6B Err81.7 is also detected in SafeOp and Op (L33546-L33624): the master changed SM2/SM3.
@@ -129,16 +130,16 @@ void ProcessDataModule::check_sms_while_running() {
   for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
   const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));
   if (check_process_data_sm(sms, kOutputsSm, rx_plan_.bytes(), ram_end_) != PdSmFault::Ok) {
-    raise_fault(code_or(codes_.invalid_output_config, kEtgOutputConfig), AlState::PreOp);
+    raise_fault(code_or(codes_.invalid_output_config, kEtgOutputConfig), ecat::AlState::PreOp);
   } else if (check_process_data_sm(sms, kInputsSm, tx_plan_.bytes(), ram_end_) != PdSmFault::Ok) {
-    raise_fault(code_or(codes_.invalid_input_config, kEtgInputConfig), AlState::PreOp);
+    raise_fault(code_or(codes_.invalid_input_config, kEtgInputConfig), ecat::AlState::PreOp);
   }
 }
 
 // ---- transitions -----------------------------------------------------------------------------
 
-CheckResult ProcessDataModule::check_transition(AlState from, AlState to) {
-  if (from == AlState::PreOp && to == AlState::SafeOp) return check_preop_to_safeop();
+CheckResult ProcessDataModule::check_transition(ecat::AlState from, ecat::AlState to) {
+  if (from == ecat::AlState::PreOp && to == ecat::AlState::SafeOp) return check_preop_to_safeop();
   return CheckResult::pass();
 }
 
@@ -146,17 +147,17 @@ CheckResult ProcessDataModule::check_transition(AlState from, AlState to) {
 // leaves the slave in PreOp (A6B 8-1 table; DS5C1 E-817/E-85x).
 CheckResult ProcessDataModule::check_preop_to_safeop() {
   resolve(ctx_.objects, Direction::Tx, limits_.tx, tx_map_);
-  if (!tx_map_.ok()) return {code_or(codes_.invalid_input_mapping, kEtgInputMapping), AlState::PreOp};
+  if (!tx_map_.ok()) return {code_or(codes_.invalid_input_mapping, kEtgInputMapping), ecat::AlState::PreOp};
   resolve(ctx_.objects, Direction::Rx, limits_.rx, rx_map_);
-  if (!rx_map_.ok()) return {code_or(codes_.invalid_output_mapping, kEtgOutputMapping), AlState::PreOp};
+  if (!rx_map_.ok()) return {code_or(codes_.invalid_output_mapping, kEtgOutputMapping), ecat::AlState::PreOp};
 
   for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
   const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));
   if (check_process_data_sm(sms, kOutputsSm, rx_map_.bytes(), ram_end_) != PdSmFault::Ok) {
-    return {code_or(codes_.invalid_output_config, kEtgOutputConfig), AlState::PreOp};
+    return {code_or(codes_.invalid_output_config, kEtgOutputConfig), ecat::AlState::PreOp};
   }
   if (check_process_data_sm(sms, kInputsSm, tx_map_.bytes(), ram_end_) != PdSmFault::Ok) {
-    return {code_or(codes_.invalid_input_config, kEtgInputConfig), AlState::PreOp};
+    return {code_or(codes_.invalid_input_config, kEtgInputConfig), ecat::AlState::PreOp};
   }
 
   WatchdogSetting wd;
@@ -164,17 +165,17 @@ CheckResult ProcessDataModule::check_preop_to_safeop() {
   wd.enabled = rx_map_.bytes() > 0 && wd_time != 0 &&
                (sms[kOutputsSm].control & reg::sm::kWatchdogTrigger) != 0;
   wd.time = process_data_watchdog_time(ctx_.pdi.read_u16(reg::kWatchdogDivider), wd_time);
-  const bool dc = (ctx_.pdi.read_u8(kDcActivation) & kDcSync0Active) == kDcSync0Active;
+  const bool dc = (ctx_.pdi.read_u8(reg::kDcActivation) & kDcSync0Active) == kDcSync0Active;
   wd.synchronised = dc || read_unsigned(ctx_.objects, kSm2Sync, 1) != 0;
   wd.cycle_ns = read_unsigned(ctx_.objects, kSm2Sync, 2);
   if (!watchdog_setting_ok(wd, watchdog_limits_)) {
-    return {code_or(codes_.invalid_watchdog_config, kEtgWatchdogConfig), AlState::PreOp};
+    return {code_or(codes_.invalid_watchdog_config, kEtgWatchdogConfig), ecat::AlState::PreOp};
   }
   return CheckResult::pass();
 }
 
-void ProcessDataModule::entered(AlState from, AlState to, Nanos now) {
-  if (from == AlState::PreOp && to == AlState::SafeOp) {
+void ProcessDataModule::entered(ecat::AlState from, ecat::AlState to, Nanos now) {
+  if (from == ecat::AlState::PreOp && to == ecat::AlState::SafeOp) {
     // The mapping becomes effective here (A6B L7008, L7172, L7311).
     rx_plan_.build(ctx_.objects, rx_map_);
     tx_plan_.build(ctx_.objects, tx_map_);
@@ -186,9 +187,9 @@ void ProcessDataModule::entered(AlState from, AlState to, Nanos now) {
     produce_inputs(now);  // TxPDO valid from SafeOp on (A6B L7619-L7621)
     return;
   }
-  if (to == AlState::Op) return;
+  if (to == ecat::AlState::Op) return;
   outputs_valid_ = false;
-  if (rank(to) < rank(AlState::SafeOp)) {
+  if (rank(to) < rank(ecat::AlState::SafeOp)) {
     running_ = false;
     cycle_by_sync_ = false;
     rx_plan_.clear();

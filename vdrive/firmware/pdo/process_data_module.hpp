@@ -41,8 +41,8 @@ public:
   void power_on(Nanos now) override;
   std::uint32_t serviced_events() const override;
   void on_events(std::uint32_t events, Nanos now) override;
-  CheckResult check_transition(AlState from, AlState to) override;
-  void entered(AlState from, AlState to, Nanos now) override;
+  CheckResult check_transition(ecat::AlState from, ecat::AlState to) override;
+  void entered(ecat::AlState from, ecat::AlState to, Nanos now) override;
 
   // Reads the whole SM2 buffer (releasing it) and, in Op, scatters it into the RxPDO objects.
   void exchange_outputs(Nanos now);

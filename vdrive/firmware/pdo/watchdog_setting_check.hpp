@@ -6,13 +6,13 @@
 #include <cstdint>
 
 #include "common/clock.hpp"
-#include "esc_model/registers.hpp"
+#include "ethercat/registers.hpp"
 #include "vdrive/firmware/pdo/pdo_limits.hpp"
 
 namespace vdrive::firmware::pdo {
 
 inline Nanos process_data_watchdog_time(std::uint16_t divider, std::uint16_t time) {
-  return (static_cast<Nanos>(divider) + 2) * esc::reg::kWatchdogClockNs * static_cast<Nanos>(time);
+  return (static_cast<Nanos>(divider) + 2) * ecat::reg::kWatchdogClockNs * static_cast<Nanos>(time);
 }
 
 struct WatchdogSetting {

@@ -56,7 +56,7 @@ SyncDecision check_sync_settings(const SyncRules& rules, const profile::AlStatus
   SyncDecision d;
   d.mode = mode_of(s.output_sync_type);
   auto refuse = [&d](std::uint16_t code) {
-    d.result = {code, AlState::PreOp};
+    d.result = {code, ecat::AlState::PreOp};
     return d;
   };
 

@@ -5,6 +5,7 @@
 // Pure functions over values; the sync module reads the registers and objects. No allocation.
 #include <cstdint>
 
+#include "ethercat/registers.hpp"
 #include "vdrive/firmware/al_state_machine.hpp"
 #include "vdrive/firmware/sync/sync_rules.hpp"
 
@@ -22,8 +23,11 @@ struct SyncSettings {
 };
 
 // 0981h bits 2-0: cyclic operation, SYNC0, SYNC1 (the other bits are activation options).
-inline constexpr std::uint8_t kDcActivationMask = 0x07;
-inline constexpr std::uint8_t kDcCyclicSync0 = 0x03;
+inline constexpr std::uint8_t kDcActivationMask = ecat::reg::dc_activation::kCyclicOperation |
+                                                  ecat::reg::dc_activation::kSync0 |
+                                                  ecat::reg::dc_activation::kSync1;
+inline constexpr std::uint8_t kDcCyclicSync0 =
+    ecat::reg::dc_activation::kCyclicOperation | ecat::reg::dc_activation::kSync0;
 
 struct SyncDecision {
   CheckResult result;                  // pass, or the code and fallback state

@@ -4,14 +4,12 @@
 #include <array>
 #include <limits>
 
+#include "ethercat/little_endian.hpp"
 #include "vdrive/firmware/pdi.hpp"
 
 namespace vdrive::firmware::sync {
 namespace {
 
-constexpr std::uint16_t kDcActivation = 0x0981;
-constexpr std::uint16_t kDcNextSync0 = 0x0990;   // 8 bytes: system time of the next SYNC0 pulse
-constexpr std::uint16_t kDcSync0Cycle = 0x09A0;
 constexpr std::uint32_t kSm2Event = 1u << (al_event::kSmShift + 2);
 // Free run with 1C32h-02h = 0 ("may be 0", A6B L7790): the drive's own period.
 constexpr Nanos kDefaultFreeRunCycle = 1000000;
@@ -19,9 +17,7 @@ constexpr Nanos kDefaultFreeRunCycle = 1000000;
 std::uint64_t read_u64(Pdi& pdi, std::uint16_t address) {
   std::array<std::uint8_t, 8> b{};
   pdi.read(address, b);
-  std::uint64_t v = 0;
-  for (std::size_t i = b.size(); i-- > 0;) v = (v << 8) | b[i];
-  return v;
+  return ecat::get_le64(b.data());
 }
 
 }  // namespace
@@ -53,8 +49,8 @@ void SyncModule::on_events(std::uint32_t events, Nanos now) {
     // Reading the SYNC0 status acknowledges the event (ET1100), whatever the state.
     context_.pdi.read_u8(reg::kDcSync0Status);
     if (monitor_.running() && decision_.mode == SyncMode::DcSync0) {
-      const std::uint32_t cycle = context_.pdi.read_u32(kDcSync0Cycle);
-      const std::uint64_t edge = read_u64(context_.pdi, kDcNextSync0) - cycle;
+      const std::uint32_t cycle = context_.pdi.read_u32(reg::kDcSync0CycleTime);
+      const std::uint64_t edge = read_u64(context_.pdi, reg::kDcNextSync0) - cycle;
       // The cycle runs at the pulse, as on a microcontroller whose interrupt is exact: when the
       // host's loop gets to the pulse late, the outputs are dated at the pulse and the drive's
       // set-point segment starts there, not at the moment the loop looked.
@@ -68,11 +64,11 @@ void SyncModule::on_events(std::uint32_t events, Nanos now) {
     handle(monitor_.on_edge(static_cast<std::uint64_t>(now), now), now);
 }
 
-CheckResult SyncModule::check_transition(AlState from, AlState to) {
-  if (from != AlState::PreOp || to != AlState::SafeOp) return CheckResult::pass();
+CheckResult SyncModule::check_transition(ecat::AlState from, ecat::AlState to) {
+  if (from != ecat::AlState::PreOp || to != ecat::AlState::SafeOp) return CheckResult::pass();
   SyncSettings settings;
-  settings.dc_activation = context_.pdi.read_u8(kDcActivation);
-  settings.sync0_cycle_ns = context_.pdi.read_u32(kDcSync0Cycle);
+  settings.dc_activation = context_.pdi.read_u8(reg::kDcActivation);
+  settings.sync0_cycle_ns = context_.pdi.read_u32(reg::kDcSync0CycleTime);
   settings.output_sync_type = static_cast<std::uint16_t>(objects_.get(kOutputSync, sub::kSyncType));
   settings.input_sync_type = static_cast<std::uint16_t>(objects_.get(kInputSync, sub::kSyncType));
   settings.cycle_time_ns = static_cast<std::uint32_t>(objects_.get(kOutputSync, sub::kCycleTime));
@@ -115,11 +111,11 @@ MonitorConfig SyncModule::monitor_config() const {
   return c;
 }
 
-void SyncModule::entered(AlState from, AlState to, Nanos now) {
-  if (from == AlState::PreOp && to == AlState::SafeOp) {
+void SyncModule::entered(ecat::AlState from, ecat::AlState to, Nanos now) {
+  if (from == ecat::AlState::PreOp && to == ecat::AlState::SafeOp) {
     monitor_.start(monitor_config(), now);
     for (auto& listener : start_listeners_) listener(decision_.mode);
-  } else if (rank(to) < rank(AlState::SafeOp)) {
+  } else if (rank(to) < rank(ecat::AlState::SafeOp)) {
     monitor_.stop();
   }
 }
@@ -156,7 +152,7 @@ void SyncModule::handle(const MonitorReport& r, Nanos cycle_at) {
       objects_.set(kInputSync, sub::kCycleTime, measured);
       if (!cycle_time_accepted(rules_.spec, measured)) {
         monitor_.stop();
-        raise_fault(context_.profile.al_codes.invalid_sync_cycle_time, AlState::PreOp);
+        raise_fault(context_.profile.al_codes.invalid_sync_cycle_time, ecat::AlState::PreOp);
         return;
       }
     }
@@ -167,17 +163,17 @@ void SyncModule::handle(const MonitorReport& r, Nanos cycle_at) {
   switch (r.fault) {
     case MonitorReport::Fault::None: break;
     case MonitorReport::Fault::NoLock:
-      raise_fault(codes.no_sync_error, AlState::PreOp);
+      raise_fault(codes.no_sync_error, ecat::AlState::PreOp);
       break;
     case MonitorReport::Fault::LostSync:
       if (rules_.spec.sync_error_flag)
         for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 1);
-      raise_fault(codes.sync_error, AlState::SafeOp);
+      raise_fault(codes.sync_error, ecat::AlState::SafeOp);
       break;
     case MonitorReport::Fault::PllError:
       if (rules_.spec.sync_error_flag)
         for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 1);
-      raise_fault(codes.pll_error, AlState::SafeOp);
+      raise_fault(codes.pll_error, ecat::AlState::SafeOp);
       break;
   }
 }

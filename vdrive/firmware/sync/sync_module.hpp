@@ -39,8 +39,8 @@ public:
   void power_on(Nanos now) override;
   std::uint32_t serviced_events() const override;
   void on_events(std::uint32_t events, Nanos now) override;
-  CheckResult check_transition(AlState from, AlState to) override;
-  void entered(AlState from, AlState to, Nanos now) override;
+  CheckResult check_transition(ecat::AlState from, ecat::AlState to) override;
+  void entered(ecat::AlState from, ecat::AlState to, Nanos now) override;
   void tick(Nanos now) override;
   Nanos next_deadline() const override;
 

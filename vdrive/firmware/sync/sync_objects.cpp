@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "ethercat/little_endian.hpp"
+
 namespace vdrive::firmware::sync {
 
 SyncObjects::SyncObjects(od::ObjectStore& objects, const SyncRules& rules)
@@ -17,16 +19,14 @@ std::uint64_t SyncObjects::get(std::uint16_t index, std::uint8_t subindex) const
   const od::EntryDesc* e = entry(index, subindex);
   if (e == nullptr) return 0;
   const std::span<const std::uint8_t> bytes = std::as_const(objects_).raw(*e);
-  std::uint64_t v = 0;
-  for (std::size_t i = std::min<std::size_t>(bytes.size(), 8); i-- > 0;) v = (v << 8) | bytes[i];
-  return v;
+  return ecat::get_le(bytes);
 }
 
 void SyncObjects::set(std::uint16_t index, std::uint8_t subindex, std::uint64_t value) {
   const od::EntryDesc* e = entry(index, subindex);
   if (e == nullptr) return;
   const std::span<std::uint8_t> bytes = objects_.raw(*e);
-  for (std::size_t i = 0; i < bytes.size() && i < 8; ++i) bytes[i] = static_cast<std::uint8_t>(value >> (8 * i));
+  ecat::put_le(bytes.first(std::min<std::size_t>(bytes.size(), 8)), value);
 }
 
 void SyncObjects::count(std::uint16_t index, std::uint8_t subindex, std::uint64_t n) {

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace vdrive::firmware {
+namespace vdrive::ecat {
 
 // The value in bits 3:0 of AL Control / AL Status.
 enum class AlState : std::uint8_t {
@@ -71,4 +71,4 @@ struct AlStatusBits {
   }
 };
 
-}  // namespace vdrive::firmware
+}  // namespace vdrive::ecat

@@ -4,10 +4,13 @@
 //   bytes 2-3 Address  station address of the source (0 from a master)
 //   byte  4   bits 5:0 channel (reserved, 0), bits 7:6 priority
 //   byte  5   bits 3:0 type, bits 6:4 counter (1..7, 0 = not counted), bit 7 reserved
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
-namespace vdrive::firmware::mailbox {
+#include "ethercat/little_endian.hpp"
+
+namespace vdrive::ecat::mailbox {
 
 inline constexpr std::size_t kHeaderSize = 6;
 
@@ -44,29 +47,34 @@ struct Header {
   std::uint8_t counter = 0;   // 0..7
 
   // `bytes` holds at least kHeaderSize bytes.
-  static Header decode(std::span<const std::uint8_t> bytes) {
+  static constexpr Header decode(std::span<const std::uint8_t> bytes) {
     Header h;
-    h.length = static_cast<std::uint16_t>(bytes[0] | (bytes[1] << 8));
-    h.address = static_cast<std::uint16_t>(bytes[2] | (bytes[3] << 8));
+    h.length = get_le16(bytes, 0);
+    h.address = get_le16(bytes, 2);
     h.channel = bytes[4] & 0x3F;
     h.priority = static_cast<std::uint8_t>(bytes[4] >> 6);
     h.type = bytes[5] & 0x0F;
     h.counter = (bytes[5] >> 4) & 0x07;
     return h;
   }
-  void encode(std::span<std::uint8_t> bytes) const {
-    bytes[0] = static_cast<std::uint8_t>(length);
-    bytes[1] = static_cast<std::uint8_t>(length >> 8);
-    bytes[2] = static_cast<std::uint8_t>(address);
-    bytes[3] = static_cast<std::uint8_t>(address >> 8);
+  friend constexpr bool operator==(const Header&, const Header&) = default;
+  constexpr void encode(std::span<std::uint8_t> bytes) const {
+    put_le16(bytes, 0, length);
+    put_le16(bytes, 2, address);
     bytes[4] = static_cast<std::uint8_t>((channel & 0x3F) | ((priority & 0x03) << 6));
     bytes[5] = static_cast<std::uint8_t>((type & 0x0F) | ((counter & 0x07) << 4));
   }
 };
+
+// The payload of a type-0 (error) reply: service 0x0001, then the code.
+constexpr void encode_error_payload(std::span<std::uint8_t> payload, ErrorCode code) {
+  put_le16(payload, 0, kErrorService);
+  put_le16(payload, 2, static_cast<std::uint16_t>(code));
+}
 
 // The slave's reply counter: 1..7, then 1 again (0 is never sent; ETG.1000.4).
 constexpr std::uint8_t next_counter(std::uint8_t counter) {
   return counter >= 7 ? 1 : static_cast<std::uint8_t>(counter + 1);
 }
 
-}  // namespace vdrive::firmware::mailbox
+}  // namespace vdrive::ecat::mailbox

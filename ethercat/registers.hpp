@@ -1,10 +1,11 @@
 #pragma once
 // ESC register map (Beckhoff ET1100/ET1810 class) as named constants and bit layouts.
-// Every register address and bit used by the ESC model is named here; no magic numbers elsewhere.
+// Every register address and bit used by the ESC model, the firmware and the tools is named here;
+// no magic numbers elsewhere.
 #include <cstddef>
 #include <cstdint>
 
-namespace vdrive::esc::reg {
+namespace vdrive::ecat::reg {
 
 using Addr = std::uint16_t;
 
@@ -56,6 +57,8 @@ inline constexpr Addr kAlStatusCode = 0x0134;     // 2 bytes, ECAT r, PDI r/w
 inline constexpr Addr kLedOverride = 0x0138;      // 2 bytes, r/w both sides
 inline constexpr std::uint16_t kAlStateInit = 0x0001;
 inline constexpr std::uint16_t kAlStateMask = 0x001F;  // state (bits 0-3) + error bit 4
+inline constexpr std::uint16_t kAlStateBits = 0x000F;  // the state alone
+inline constexpr std::uint16_t kAlErrorFlag = 0x0010;  // AL Status bit 4: code in 0x0134
 
 // ---- PDI configuration (read-only, loaded from EEPROM) ------------------------------------
 inline constexpr Addr kPdiControl = 0x0140;
@@ -94,6 +97,7 @@ inline constexpr Addr kRxErrorCounter = 0x0300;   // port p: 0x0300+2p invalid f
                                                   // 0x0308-0x030B forwarded RX errors
 inline constexpr Addr kForwardedRxErrorCounter = 0x0308;  // one byte per port
 inline constexpr Addr kEcatProcessingErrors = 0x030C;
+inline constexpr Addr kErrorCountersLast = kEcatProcessingErrors;  // 0x0300-0x030C: frame errors
 inline constexpr Addr kPdiErrors = 0x030D;
 inline constexpr Addr kLostLinkCounter = 0x0310;  // 4 bytes, one per port
 inline constexpr Addr kLostLinkCounterEnd = 0x0314;
@@ -113,6 +117,30 @@ inline constexpr std::int64_t kWatchdogClockNs = 40;  // 25 MHz base clock
 // ---- SII EEPROM interface (delegated to SiiEeprom) -----------------------------------------
 inline constexpr Addr kSiiFirst = 0x0500;
 inline constexpr Addr kSiiEnd = 0x0510;
+inline constexpr Addr kSiiConfig = 0x0500;        // ECAT r/w
+inline constexpr Addr kSiiPdiAccess = 0x0501;     // PDI r/w
+inline constexpr Addr kSiiControlStatus = 0x0502; // 2 bytes
+inline constexpr Addr kSiiAddress = 0x0504;       // 4 bytes, word address
+inline constexpr Addr kSiiData = 0x0508;          // 8 bytes (4 on 4-byte-read ESCs)
+
+namespace sii {
+// 0x0500
+inline constexpr std::uint8_t kOfferToPdi = 1u << 0;
+inline constexpr std::uint8_t kForceEcat = 1u << 1;
+// 0x0501
+inline constexpr std::uint8_t kPdiAccessing = 1u << 0;
+// 0x0502-0x0503
+inline constexpr std::uint16_t kWriteEnable = 1u << 0;
+inline constexpr std::uint16_t kReads8Bytes = 1u << 6;
+inline constexpr std::uint16_t kTwoAddressBytes = 1u << 7;
+inline constexpr int kCommandShift = 8;
+inline constexpr std::uint16_t kCommandMask = 7u << kCommandShift;
+inline constexpr std::uint16_t kChecksumError = 1u << 11;
+inline constexpr std::uint16_t kDeviceInfoError = 1u << 12;
+inline constexpr std::uint16_t kAckError = 1u << 13;
+inline constexpr std::uint16_t kWriteEnableError = 1u << 14;
+inline constexpr std::uint16_t kBusy = 1u << 15;
+}  // namespace sii
 
 // ---- FMMUs --------------------------------------------------------------------------------
 inline constexpr Addr kFmmu0 = 0x0600;
@@ -168,13 +196,55 @@ inline constexpr std::uint8_t kPdiDeactivate = 1u << 0;
 inline constexpr std::uint8_t kRepeatAck = 1u << 1;
 }  // namespace sm
 
-// ---- Distributed clocks (delegated to DcUnit) ----------------------------------------------
+// ---- Distributed clocks (delegated to DcUnit), ET1100 64-bit DC ---------------------------
 inline constexpr Addr kDcFirst = 0x0900;
 inline constexpr Addr kDcEnd = 0x0A00;
-inline constexpr Addr kDcReceiveTimePort0 = 0x0900;  // a frame writing here latches receive times
+inline constexpr Addr kDcReceiveTimePort0 = 0x0900;  // 4 bytes per port; a frame writing here
+                                                     // latches receive times
 inline constexpr Addr kDcSystemTime = 0x0910;        // 8 bytes: the local copy of the system time
+inline constexpr Addr kDcReceiveTimeEpu = 0x0918;    // 8 bytes: port 0 receive time, 64-bit
+inline constexpr Addr kDcSystemTimeOffset = 0x0920;  // 8 bytes
+inline constexpr Addr kDcSystemTimeDelay = 0x0928;   // 4 bytes
+inline constexpr Addr kDcSystemTimeDifference = 0x092C;  // 4 bytes, bit31 = local copy smaller
+inline constexpr Addr kDcSpeedCounterStart = 0x0930;     // 2 bytes
+inline constexpr Addr kDcSpeedCounterDiff = 0x0932;      // 2 bytes, signed
+inline constexpr Addr kDcDifferenceFilterDepth = 0x0934;
+inline constexpr Addr kDcSpeedFilterDepth = 0x0935;
+inline constexpr Addr kDcCyclicUnitControl = 0x0980;
+inline constexpr Addr kDcActivation = 0x0981;
+inline constexpr Addr kDcPulseLength = 0x0982;       // 2 bytes, 10 ns units; 0 = acknowledge mode
+inline constexpr Addr kDcActivationStatus = 0x0984;
 inline constexpr Addr kDcSync0Status = 0x098E;
 inline constexpr Addr kDcSync1Status = 0x098F;
+inline constexpr Addr kDcStartTime = 0x0990;         // 8 bytes; read back: next SYNC0 pulse
+inline constexpr Addr kDcNextSync0 = kDcStartTime;
+inline constexpr Addr kDcNextSync1 = 0x0998;         // 8 bytes
+inline constexpr Addr kDcSync0CycleTime = 0x09A0;    // 4 bytes, ns; 0 = single shot
+inline constexpr Addr kDcSync1CycleTime = 0x09A4;    // 4 bytes, ns
+inline constexpr Addr kDcLatch0Control = 0x09A8;
+inline constexpr Addr kDcLatch1Control = 0x09A9;
+
+namespace dc_cyclic_unit_control {  // 0x0980: which side owns the sync out unit and the latches
+inline constexpr std::uint8_t kSyncOutPdi = 1u << 0;
+inline constexpr std::uint8_t kLatch0Pdi = 1u << 4;
+inline constexpr std::uint8_t kLatch1Pdi = 1u << 5;
+}  // namespace dc_cyclic_unit_control
+
+namespace dc_activation {  // 0x0981
+inline constexpr std::uint8_t kCyclicOperation = 1u << 0;
+inline constexpr std::uint8_t kSync0 = 1u << 1;
+inline constexpr std::uint8_t kSync1 = 1u << 2;
+inline constexpr std::uint8_t kAutoActivation = 1u << 3;     // activate on writing 0x0990
+inline constexpr std::uint8_t kStartTimeExtension = 1u << 4; // 32-bit start time -> 64 bit
+inline constexpr std::uint8_t kPlausibilityCheck = 1u << 5;
+inline constexpr std::uint8_t kNearFuture2s = 1u << 6;
+}  // namespace dc_activation
+
+namespace dc_activation_status {  // 0x0984
+inline constexpr std::uint8_t kSync0Pending = 1u << 0;
+inline constexpr std::uint8_t kSync1Pending = 1u << 1;
+inline constexpr std::uint8_t kStartTimeImplausible = 1u << 2;
+}  // namespace dc_activation_status
 
 // ---- User RAM ------------------------------------------------------------------------------
 inline constexpr Addr kUserRam = 0x0F80;
@@ -187,4 +257,4 @@ inline constexpr std::size_t kEepromSyncPulseWord = 2;       // -> 0x0982-0x0983
 inline constexpr std::size_t kEepromExtPdiConfigWord = 3;    // -> 0x0152-0x0153
 inline constexpr std::size_t kEepromAliasWord = 4;           // -> 0x0012-0x0013
 
-}  // namespace vdrive::esc::reg
+}  // namespace vdrive::ecat::reg

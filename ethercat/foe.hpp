@@ -1,6 +1,6 @@
 #pragma once
 // FoE on the wire (ETG.1000.6 5.7, File Access over EtherCAT). Offsets are into the mailbox
-// payload (after the 6-byte mailbox header):
+// payload (after the 6-byte mailbox header); fields are little-endian:
 //
 //   byte 0     OpCode: 1 RRQ, 2 WRQ, 3 DATA, 4 ACK, 5 ERR, 6 BUSY
 //   byte 1     reserved (0)
@@ -15,7 +15,9 @@
 #include <span>
 #include <string_view>
 
-namespace vdrive::firmware::foe {
+#include "ethercat/little_endian.hpp"
+
+namespace vdrive::ecat::foe {
 
 enum class OpCode : std::uint8_t {
   ReadRequest = 1,
@@ -27,7 +29,23 @@ enum class OpCode : std::uint8_t {
 };
 
 inline constexpr std::size_t kHeaderSize = 6;              // opcode, reserved, 4-byte field
+inline constexpr std::size_t kField = 2;                   // password / packet / error code
+inline constexpr std::size_t kBusyDoneAt = 2, kBusyEntireAt = 4;  // BUSY: 2 bytes each
+inline constexpr std::size_t kData = kHeaderSize;          // file name / data / error text
 inline constexpr std::size_t kMailboxOverhead = 6 + kHeaderSize;  // what a DATA packet loses
+
+constexpr OpCode opcode_of(std::span<const std::uint8_t> payload) {
+  return static_cast<OpCode>(payload[0]);
+}
+// The 6-byte header: opcode, reserved 0, the 4-byte field.
+constexpr void put_header(std::span<std::uint8_t> payload, OpCode op, std::uint32_t field) {
+  payload[0] = static_cast<std::uint8_t>(op);
+  payload[1] = 0;
+  put_le32(payload, kField, field);
+}
+constexpr std::uint32_t field_of(std::span<const std::uint8_t> payload) {
+  return get_le32(payload, kField);
+}
 
 // ETG.1000.6 Table "FoE error codes" with the meanings the ETG slave stack code gives them
 // (SSC ecatfoe.h): 0x8008 = a file that may only be written in Bootstrap, 0x8009 = a file that
@@ -72,16 +90,4 @@ constexpr std::string_view error_text(ErrorCode code) {
   return "Not defined";
 }
 
-inline std::uint32_t get_u32(std::span<const std::uint8_t> p, std::size_t at) {
-  return static_cast<std::uint32_t>(p[at]) | (static_cast<std::uint32_t>(p[at + 1]) << 8) |
-         (static_cast<std::uint32_t>(p[at + 2]) << 16) | (static_cast<std::uint32_t>(p[at + 3]) << 24);
-}
-inline void put_u32(std::span<std::uint8_t> p, std::size_t at, std::uint32_t v) {
-  for (std::size_t i = 0; i < 4; ++i) p[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-inline void put_u16(std::span<std::uint8_t> p, std::size_t at, std::uint16_t v) {
-  p[at] = static_cast<std::uint8_t>(v);
-  p[at + 1] = static_cast<std::uint8_t>(v >> 8);
-}
-
-}  // namespace vdrive::firmware::foe
+}  // namespace vdrive::ecat::foe

@@ -1,11 +1,12 @@
 #pragma once
-// CoE on the wire (ETG.1000.6 5.6): the 2-byte CoE header, SDO command bytes and little-endian
-// field access. Offsets are into the mailbox payload (after the 6-byte mailbox header).
+// CoE on the wire (ETG.1000.6 5.6): the 2-byte CoE header, SDO command bytes and the SDO
+// Information header. Offsets are into the mailbox payload (after the 6-byte mailbox header);
+// multi-byte fields are little-endian (ethercat/little_endian.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
-namespace vdrive::firmware::coe {
+namespace vdrive::ecat::coe {
 
 // CoE header: bits 8:0 number (0), bits 15:12 service.
 enum class Service : std::uint8_t {
@@ -20,10 +21,10 @@ enum class Service : std::uint8_t {
 };
 inline constexpr std::size_t kCoeHeaderSize = 2;
 
-inline Service service_of(std::span<const std::uint8_t> payload) {
+constexpr Service service_of(std::span<const std::uint8_t> payload) {
   return static_cast<Service>(payload[1] >> 4);
 }
-inline void put_coe_header(std::span<std::uint8_t> out, Service service) {
+constexpr void put_coe_header(std::span<std::uint8_t> out, Service service) {
   out[0] = 0;
   out[1] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(service) << 4);
 }
@@ -44,6 +45,8 @@ enum class Ccs : std::uint8_t {
   UploadSegment = 3,
   Abort = 4,
 };
+inline constexpr int kCommandSpecifierShift = 5;
+constexpr Ccs ccs_of(std::uint8_t command) { return static_cast<Ccs>(command >> kCommandSpecifierShift); }
 inline constexpr std::uint8_t kSizeIndicator = 0x01;   // initiate: size given
 inline constexpr std::uint8_t kExpedited = 0x02;       // initiate: data in the 4 bytes
 inline constexpr std::uint8_t kCompleteAccess = 0x10;  // initiate: whole object
@@ -58,20 +61,22 @@ inline constexpr std::uint8_t kUploadSegmentResponse = 0x00;     // scs 0
 inline constexpr std::uint8_t kAbort = 0x80;                     // cs 4
 }  // namespace sdo
 
-inline std::uint16_t get_u16(std::span<const std::uint8_t> b, std::size_t at) {
-  return static_cast<std::uint16_t>(b[at] | (b[at + 1] << 8));
-}
-inline std::uint32_t get_u32(std::span<const std::uint8_t> b, std::size_t at) {
-  return static_cast<std::uint32_t>(b[at]) | (static_cast<std::uint32_t>(b[at + 1]) << 8) |
-         (static_cast<std::uint32_t>(b[at + 2]) << 16) |
-         (static_cast<std::uint32_t>(b[at + 3]) << 24);
-}
-inline void put_u16(std::span<std::uint8_t> b, std::size_t at, std::uint16_t v) {
-  b[at] = static_cast<std::uint8_t>(v);
-  b[at + 1] = static_cast<std::uint8_t>(v >> 8);
-}
-inline void put_u32(std::span<std::uint8_t> b, std::size_t at, std::uint32_t v) {
-  for (std::size_t i = 0; i < 4; ++i) b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
+// SDO Information (ETG.1000.6 5.6.3): CoE header, opcode (bit 7: more fragments follow), reserved,
+// fragments left (2 bytes), then the service data.
+namespace info {
+enum class Opcode : std::uint8_t {
+  GetOdListRequest = 1,
+  GetOdListResponse = 2,
+  GetObjectDescriptionRequest = 3,
+  GetObjectDescriptionResponse = 4,
+  GetEntryDescriptionRequest = 5,
+  GetEntryDescriptionResponse = 6,
+  ErrorRequest = 7,
+};
+inline constexpr std::uint8_t kIncomplete = 0x80;
+inline constexpr std::size_t kHeaderSize = 6;   // CoE header, opcode, reserved, fragments left
+// Entry description request: value info bits.
+inline constexpr std::uint8_t kUnitType = 0x08, kDefault = 0x10, kMinimum = 0x20, kMaximum = 0x40;
+}  // namespace info
 
-}  // namespace vdrive::firmware::coe
+}  // namespace vdrive::ecat::coe
