@@ -22,7 +22,7 @@ namespace vdrive::od { class ObjectStore; }
 namespace vdrive::firmware {
 
 struct FirmwareOptions {
-  // The machine the drive moves (axis 0 is its motor); empty = plant::default_plant(profile).
+  // The machine the drive moves (axis 0 is its motor); empty = drive::default_plant(profile).
   std::optional<plant::PlantDescription> plant;
 };
 
