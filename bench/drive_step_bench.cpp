@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "plant/motor_params.hpp"
+#include "vdrive/drive/product_plant.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/drive/drive_engine.hpp"
 #include "vdrive/drive/object_ref.hpp"
@@ -23,7 +23,7 @@ namespace drive = vdrive::drive;
 
 void BM_DriveStepCsp(benchmark::State& state, const std::string& id) {
   const vdrive::profile::ProductProfile profile = vdrive::profile::load_profile(id);
-  const vdrive::plant::PlantDescription description = vdrive::plant::default_plant(profile);
+  const vdrive::plant::PlantDescription description = vdrive::drive::default_plant(profile);
   auto dictionary = vdrive::od::shared_dictionary(profile);
   vdrive::od::ObjectStore store(*dictionary);
   vdrive::plant::Plant plant(description);

@@ -41,8 +41,8 @@ struct JointSpec {
 
 enum class MotorKind { servo, stepper };
 
-// Everything the physics needs to know about one motor (filled from the product's catalogue entry
-// plus defaults, see motor_params.hpp).
+// Everything the physics needs to know about one motor, as plain values (a product's catalogue
+// entry becomes one above the plant, in vdrive/drive/product_plant.hpp).
 struct MotorParams {
   std::string model;
   MotorKind kind = MotorKind::servo;

@@ -4,10 +4,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
-
-#include "plant/motor_params.hpp"
 
 namespace vdrive::plant {
 
@@ -123,16 +122,14 @@ MotorParams parse_motor(const Reader& r, const YAML::Node& m, const std::string&
   MotorParams p;
   if (const YAML::Node prod = m["product"]) {
     const std::string id = r.text(prod, path + ".product");
-    const profile::ProductProfile* product = products ? products(id) : nullptr;
-    if (!product) r.fail(prod, path + ".product", "unknown product '" + id + "'");
-    p = default_motor(*product);
+    const std::optional<MotorCatalogue> catalogue = products ? products(id) : std::nullopt;
+    if (!catalogue) r.fail(prod, path + ".product", "unknown product '" + id + "'");
+    p = catalogue->default_motor;
     if (const YAML::Node model = m["model"]) {
       const std::string name = r.text(model, path + ".model");
-      const profile::MotorSpec* found = nullptr;
-      for (const profile::MotorSpec& s : product->motors)
-        if (s.model == name && !found) found = &s;
+      const MotorParams* found = catalogue->find(name);
       if (!found) r.fail(model, path + ".model", "no motor '" + name + "' in " + id + "'s catalogue");
-      p = motor_params_from(id, *found);
+      p = *found;
     }
   } else {
     r.str(m, path, "model", p.model);

@@ -86,12 +86,12 @@ TEST(LineStatus, PublishingOnTheLoopAllocatesNothing) {
   RecordingService inner;
   inner.polls.reserve(16);
   LineStatusPublisher publisher(net, status, 100 * kMs, &inner);
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   for (int i = 0; i < 10; ++i) {
     publisher.poll(i * 100 * kMs);  // every one due: samples all three ESCs
     (void)publisher.next_deadline();
   }
-  EXPECT_EQ(test::allocation_count() - before, 0);
+  EXPECT_EQ(vdrive::test::allocation_count() - before, 0);
   EXPECT_EQ(inner.polls.size(), 10u);
   EXPECT_EQ(status.slave(0).al_status & 0x0F, 1);
 }

@@ -13,7 +13,7 @@
 #include "vdrive/link/loopback_link.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/runtime/event_loop.hpp"
-#include "vdrive/runtime_test_support.hpp"
+#include "tests/support/runtime_test_support.hpp"
 
 namespace vdrive::control {
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
 // A whole drive on the bench: a real product (profile, dictionary, values), its default plant
-// (plant::default_plant) and a DriveEngine, with the EtherCAT side in Op. A "master" writes the
+// (drive::default_plant) and a DriveEngine, with the EtherCAT side in Op. A "master" writes the
 // RxPDO objects (6040h, 6060h, targets) once per bus cycle and tells the engine, as the
 // process-data module does; tests read back the actual values and the physics.
 #include <gtest/gtest.h>
@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "plant/motor_params.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/drive/drive_engine.hpp"
 #include "vdrive/drive/object_ref.hpp"
+#include "vdrive/drive/product_plant.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/od/object_store.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -33,7 +33,7 @@ public:
   using Tweak = std::function<void(profile::ProductProfile&, plant::PlantDescription&)>;
 
   explicit EngineBench(const std::string& id, const Tweak& tweak = {})
-      : profile_(profile::load_profile(id)), plant_description_(plant::default_plant(profile_)) {
+      : profile_(profile::load_profile(id)), plant_description_(drive::default_plant(profile_)) {
     if (tweak) tweak(profile_, plant_description_);
     dictionary_ = od::shared_dictionary(profile_);
     store_ = std::make_unique<od::ObjectStore>(*dictionary_);

@@ -25,7 +25,7 @@ EngineBench::Tweak heavy_load() {
 // The torque the plant's motor makes, in 6077h's unit: 0.1 % of the motor's rated torque (the
 // tweak above leaves the default plant's motor as it is).
 double plant_torque(const EngineBench& b) {
-  const double rated = plant::default_plant(b.profile()).axes.at(0).motor.rated_torque_nm;
+  const double rated = drive::default_plant(b.profile()).axes.at(0).motor.rated_torque_nm;
   return b.feedback().torque_nm / rated * 1000.0;
 }
 

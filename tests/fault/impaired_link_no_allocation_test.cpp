@@ -25,7 +25,7 @@ protected:
   long serve_rounds() {
     const std::vector<std::uint8_t> frame = test::ethercat_frame(0x07, 0, ecat::reg::kAlStatus, 2);
     std::array<std::uint8_t, link::kMaxFrame> reply{};
-    const long before = test::allocation_count();
+    const long before = vdrive::test::allocation_count();
     for (int round = 0; round < 20; ++round) {
       for (int i = 0; i < 4; ++i) EXPECT_TRUE(ends_.first->send(frame));
       runtime::run_until(net_, impaired_, clock_, clock_.now() + 1'000'000, counters_);
@@ -34,7 +34,7 @@ protected:
       while (ends_.first->receive(reply, 0) != 0) {
       }
     }
-    return test::allocation_count() - before;
+    return vdrive::test::allocation_count() - before;
   }
 
   VirtualClock clock_{1'000'000};

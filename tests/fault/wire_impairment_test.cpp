@@ -174,7 +174,7 @@ TEST(WireImpairment, PushAndPopAllocateNothing) {
   w.set(kToSlaves, {.drop = 0.1, .corrupt = 0.1, .duplicate = 0.3, .reorder = 0.3, .delay = 50});
   const auto f = frame(1);
   std::array<std::uint8_t, link::kMaxFrame> out{};
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   for (int i = 0; i < 1000; ++i) {
     w.push(kToSlaves, f, i * 10);
     bool bad = false;
@@ -182,7 +182,7 @@ TEST(WireImpairment, PushAndPopAllocateNothing) {
     }
   }
   w.clear();
-  EXPECT_EQ(test::allocation_count(), before);
+  EXPECT_EQ(vdrive::test::allocation_count(), before);
 }
 
 // The caller's part for corrupt: a flagged frame to the slaves goes to

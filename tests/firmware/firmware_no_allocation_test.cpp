@@ -54,10 +54,10 @@ TEST(FirmwareNoAllocation, InterruptPathAllocatesNothing) {
   for (auto& frame : frames) {
     ASSERT_TRUE(esc.process_frame(frame, esc::FrameTiming{}));
     if (esc.pdi_irq() == 0) continue;
-    const long before = g_allocations.load();
+    const long before = vdrive::test::allocation_count();
     fw.on_irq(0);
     fw.tick(0);
-    allocations += g_allocations.load() - before;
+    allocations += vdrive::test::allocation_count() - before;
     ++serviced;
   }
   EXPECT_GE(serviced, 8);  // every AL Control write and SM activation change raised the IRQ

@@ -143,7 +143,7 @@ TEST_F(A6bStore, ReadAndWriteAllocateNothing) {
   store_.on_write(0x6040, [](const EntryDesc&, std::span<const std::uint8_t>) { return SdoAbort::Ok; });
   const auto value = le<std::uint16_t>(0x0F);
   const auto too_long = le<std::uint32_t>(1);
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   for (int i = 0; i < 100; ++i) {
     EXPECT_EQ(store_.write(0x6040, 0, value, AlState::Op), SdoAbort::Ok);
     EXPECT_EQ(store_.write(0x6040, 0, too_long, AlState::Op), SdoAbort::LengthMismatch);
@@ -153,7 +153,7 @@ TEST_F(A6bStore, ReadAndWriteAllocateNothing) {
     EXPECT_EQ(store_.read(0x7777, 0, buf_, n_, AlState::Op), SdoAbort::NoSuchObject);
   }
   store_.reset_to_defaults();
-  EXPECT_EQ(test::allocation_count(), before);
+  EXPECT_EQ(vdrive::test::allocation_count(), before);
 }
 
 // ---- strings and BOOL, hand-written --------------------------------------------------------

@@ -3,7 +3,6 @@
 
 #include <cmath>
 
-#include "plant/motor_params.hpp"
 #include "plant/plant.hpp"
 #include "plant/plant_yaml.hpp"
 
@@ -94,15 +93,18 @@ TEST(PlantYaml, MissingFileIsAnError) {
 }
 
 TEST(PlantYaml, MotorFromAProductCatalogueWithOverrides) {
-  profile::ProductProfile prod;
-  prod.id = "ds1000a";
-  profile::MotorSpec stm42;
+  MotorCatalogue catalogue;
+  MotorParams stm42;
   stm42.model = "STM42W100A";
+  stm42.kind = MotorKind::stepper;
   stm42.rated_torque_nm = 0.3;
-  stm42.max_speed_rpm = 3000;
-  stm42.encoder_counts_per_rev = 16000;
-  prod.motors.push_back(stm42);
-  const ProductLookup lookup = [&](std::string_view id) { return id == "ds1000a" ? &prod : nullptr; };
+  stm42.max_speed_rad_s = 3000 * 2 * M_PI / 60;
+  catalogue.default_motor = stm42;
+  catalogue.motors.push_back(stm42);
+  const ProductLookup lookup = [&](std::string_view id) -> std::optional<MotorCatalogue> {
+    if (id == "ds1000a") return catalogue;
+    return std::nullopt;
+  };
   const PlantDescription d = parse_plant_yaml(
       "plant:\n  axes:\n    - name: s\n      motor: {product: ds1000a, model: STM42W100A, rotor_inertia_kgm2: 5e-6}\n",
       "p.yaml", lookup);

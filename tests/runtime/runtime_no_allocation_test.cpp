@@ -45,18 +45,18 @@ TEST(RuntimeNoAllocation, ServingFramesAndTimersAllocatesNothing) {
   }
 
   // The counter works: an explicit call of the global operator new (never elided) counts.
-  const long probe = test::allocation_count();
+  const long probe = vdrive::test::allocation_count();
   ::operator delete(::operator new(16));
-  ASSERT_EQ(test::allocation_count() - probe, 1) << "counting operator new not installed";
+  ASSERT_EQ(vdrive::test::allocation_count() - probe, 1) << "counting operator new not installed";
 
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   for (int round = 0; round < 20; ++round) {
     for (const auto& f : frames) ASSERT_TRUE(master->send(f));
     run_until(net, *line, clock, clock.now() + 1'000'000, counters);
     while (master->receive(reply, 0) != 0) {
     }
   }
-  EXPECT_EQ(test::allocation_count() - before, 0);
+  EXPECT_EQ(vdrive::test::allocation_count() - before, 0);
   EXPECT_EQ(counters.frames_in.load(), 21u * frames.size());
   EXPECT_EQ(counters.dropped.load(), 21u);  // only the truncated frame
 }

@@ -52,9 +52,9 @@ TEST(SteadyStateNoAllocation, ThreeDrivesInCspWithDcAndPlantsAllocateNothing) {
   for (int i = 0; i < 100; ++i) cycle();  // first use of everything the task touches
 
   const std::uint64_t frames_before = line.counters().frames_out.load();
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   for (int k = 0; k < 10'000; ++k) cycle();
-  const long allocations = test::allocation_count() - before;
+  const long allocations = vdrive::test::allocation_count() - before;
 
   EXPECT_EQ(allocations, 0) << "operator new calls in 10,000 steady-state cycles";
   // It was steady state: every frame came back with the right working counter, the line stayed

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,6 +20,7 @@
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/control_socket.hpp"
 #include "vdrive/control/fault_service.hpp"
+#include "vdrive/drive/product_plant.hpp"
 #include "vdrive/fault/impaired_link.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
@@ -111,14 +111,12 @@ std::vector<std::optional<plant::PlantDescription>> load_plants(const RunOptions
       throw CliError(kExitBadArguments, fmt::format("--plant '{}': there are {} drives (positions 0-{})", arg, o.drives.size(),
                                                     o.drives.empty() ? 0 : o.drives.size() - 1));
     if (plants[slave]) throw CliError(kExitBadArguments, fmt::format("--plant '{}': slave {} already has a plant", arg, slave));
-    std::deque<profile::ProductProfile> products;  // stable addresses for the lookup's pointers
     try {
-      plant::PlantDescription d = plant::load_plant_file(arg.substr(colon + 1), [&](std::string_view id) -> const profile::ProductProfile* {
+      plant::PlantDescription d = plant::load_plant_file(arg.substr(colon + 1), [&](std::string_view id) -> std::optional<plant::MotorCatalogue> {
         try {
-          products.push_back(profile::load_profile(id, o.profile_dir));
-          return &products.back();
+          return drive::motor_catalogue(profile::load_profile(id, o.profile_dir));
         } catch (const profile::ProfileError&) {
-          return nullptr;
+          return std::nullopt;
         }
       });
       if (d.axes.empty()) throw CliError(kExitBadArguments, fmt::format("--plant '{}': the plant has no axis for the drive", arg));

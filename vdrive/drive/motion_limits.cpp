@@ -11,9 +11,8 @@ MotionLimits::MotionLimits(const DriveContext& ctx)
     : ctx_(ctx), min_(ctx.objects, 0x607D, 1), max_(ctx.objects, 0x607D, 2), max_torque_(ctx.objects, 0x6072),
       positive_torque_(ctx.objects, 0x60E0), negative_torque_(ctx.objects, 0x60E1), selection_(ctx.objects, 0x3521),
       quick_stop_dec_(ctx.objects, 0x6085),
-      // How a software limit stops a move is not a profile key (drive.soft_limits says when they
-      // act): the A6B ramps down by 6085h from the limit (L13212-L13218), the others stop at it.
-      soft_limit_ramps_(ctx.profile.id == "a6b") {
+      // drive.soft_limits says when the limits act, drive.soft_limit_stop how they stop a move.
+      soft_limit_ramps_(ctx.profile.drive.soft_limit_stop == profile::SoftLimitStop::Ramp) {
   const auto& motors = ctx.profile.motors;
   if (!motors.empty() && motors.front().rated_torque_nm > 0.0 && motors.front().peak_torque_nm > 0.0)
     peak_permille_ = 1000.0 * motors.front().peak_torque_nm / motors.front().rated_torque_nm;

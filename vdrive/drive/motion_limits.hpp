@@ -42,7 +42,7 @@ private:
   ObjectRef<std::uint16_t> max_torque_, positive_torque_, negative_torque_;
   ObjectRef<std::int16_t> selection_;  // A6B 3521h torque limit selection; absent elsewhere
   ObjectRef<std::uint32_t> quick_stop_dec_;
-  bool soft_limit_ramps_ = false;       // a software limit decelerates by 6085h (A6B) instead of stopping at it
+  bool soft_limit_ramps_ = false;       // a software limit decelerates by 6085h instead of stopping at it
   double peak_permille_ = 3000.0;
   bool internal_limit_ = false;
   bool soft_limited_ = false;

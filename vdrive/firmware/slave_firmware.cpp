@@ -8,7 +8,7 @@
 #include <vector>
 #include <memory>
 
-#include "plant/motor_params.hpp"
+#include "vdrive/drive/product_plant.hpp"
 #include "vdrive/firmware/al_state_machine.hpp"
 #include "vdrive/firmware/drive/drive_module.hpp"
 #include "vdrive/firmware/firmware_module.hpp"
@@ -29,9 +29,9 @@ constexpr std::uint32_t kEsmEvents = al_event::kAlControl | al_event::kSmActivat
 }  // namespace
 
 struct SlaveFirmware::Impl final : TransitionHooks {
-  Impl(const profile::ProductProfile& p, esc::Esc& e)
+  Impl(const profile::ProductProfile& p, esc::Esc& e, const std::string& profile_dir)
       : profile(p),
-        dictionary(od::shared_dictionary(p)),
+        dictionary(od::shared_dictionary(p, profile_dir)),
         objects(*dictionary),
         rules(p.mailbox_rules),
         codes(p.al_codes),
@@ -80,7 +80,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     // The CiA 402 drive, last: its power-on sees the parameters the mailbox module restored.
     if (profile.modes.supported_drive_modes != 0 && !profile.modes.modes.empty()) {
       auto drive = std::make_unique<drive_module::DriveModule>(
-          context, options.plant ? *options.plant : plant::default_plant(profile),
+          context, options.plant ? *options.plant : drive::default_plant(profile),
           [mbx](const ecat::coe::Emergency& e) { mbx->post_emergency(e); });
       drive_module::DriveModule* d = drive.get();
       pd->set_application([d](Nanos now) { d->after_outputs(now); }, [d](Nanos now) { d->before_inputs(now); });
@@ -206,7 +206,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
 };
 
 SlaveFirmware::SlaveFirmware(const profile::ProductProfile& profile, esc::Esc& esc, const FirmwareOptions& options)
-    : impl_(std::make_unique<Impl>(profile, esc)) {
+    : impl_(std::make_unique<Impl>(profile, esc, options.profile_dir)) {
   impl_->install_modules(options);
 }
 

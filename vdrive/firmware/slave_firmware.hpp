@@ -22,8 +22,11 @@ namespace vdrive::od { class ObjectStore; }
 namespace vdrive::firmware {
 
 struct FirmwareOptions {
-  // The machine the drive moves (axis 0 is its motor); empty = plant::default_plant(profile).
+  // The machine the drive moves (axis 0 is its motor); empty = drive::default_plant(profile).
   std::optional<plant::PlantDescription> plant;
+  // Where the profile was loaded from: its objects.yaml is looked for there first (a product that
+  // exists only as files has no built-in dictionary). Empty: the built-in dictionaries.
+  std::string profile_dir;
 };
 
 class SlaveFirmware {

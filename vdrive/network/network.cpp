@@ -21,6 +21,7 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
       slave->esc->set_dc_model(dc.drift_ppm, dc.start_offset);
     }
     firmware::FirmwareOptions firmware_options;
+    firmware_options.profile_dir = options.profile_dir;
     if (slaves_.size() < options.plants.size()) firmware_options.plant = options.plants[slaves_.size()];
     slave->firmware = std::make_unique<firmware::SlaveFirmware>(slave->profile, *slave->esc, firmware_options);
     segment_.append(*slave->esc);

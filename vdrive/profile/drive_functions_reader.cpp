@@ -52,6 +52,7 @@ HomingSpec read_homing(YamlMapReader m) {
   h.default_method = m.i8("default_method");
   if (h.default_method != 0 && !contains(h.methods, h.default_method))
     m.fail("default_method", "is not 0 or one of methods");
+  read_homing_rules(m, h);
   m.finish();
   return h;
 }

@@ -1,4 +1,4 @@
-// profile.yaml `drive`: the product's CiA 402 behaviour as data (DriveSpec, issue 5). Every field is
+// profile.yaml `drive`: the product's CiA 402 behaviour as data (DriveSpec). Every field is
 // required, so each product states each value (with its manual line) instead of inheriting a default.
 #include <algorithm>
 #include <array>
@@ -6,21 +6,11 @@
 
 #include <fmt/format.h>
 
+#include "vdrive/profile/enum_reader.hpp"
 #include "vdrive/profile/profile_sections.hpp"
 
 namespace vdrive::profile {
 namespace {
-
-// A lower_snake name per enum value; the reader refuses any other string and lists the accepted ones.
-template <typename E, std::size_t N>
-E read_enum(YamlMapReader& m, std::string_view key, const std::array<std::pair<std::string_view, E>, N>& names) {
-  const std::string s = m.string(key);
-  for (const auto& [name, value] : names)
-    if (s == name) return value;
-  std::string list;
-  for (const auto& [name, value] : names) list += (list.empty() ? "" : ", ") + std::string(name);
-  m.fail(key, "is '" + s + "', expected one of " + list);
-}
 
 constexpr std::array<std::pair<std::string_view, SoftLimitRule>, 3> kSoftLimitRules{{
     {"always", SoftLimitRule::Always}, {"after_homing", SoftLimitRule::AfterHoming}, {"ignored", SoftLimitRule::Ignored}}};
@@ -31,6 +21,11 @@ constexpr std::array<std::pair<std::string_view, LimitSwitchRule>, 3> kLimitSwit
     {"report_only", LimitSwitchRule::ReportOnly}}};
 constexpr std::array<std::pair<std::string_view, BrakeRule>, 2> kBrakeRules{{
     {"automatic", BrakeRule::Automatic}, {"master", BrakeRule::Master}}};
+constexpr std::array<std::pair<std::string_view, IoRuleSet>, 4> kIoRuleSets{{
+    {"generic", IoRuleSet::Generic}, {"minas_a6b", IoRuleSet::A6B}, {"xinje_ds5c1", IoRuleSet::DS5C1},
+    {"ds1000a_ec", IoRuleSet::DS1000A}}};
+constexpr std::array<std::pair<std::string_view, SoftLimitStop>, 2> kSoftLimitStops{{
+    {"at_limit", SoftLimitStop::AtLimit}, {"ramp", SoftLimitStop::Ramp}}};
 
 // {index: 0x3100, subindex: 0, scale: 0.1, fallback: 20.0}; a product without the parameter writes
 // {index: 0, fallback: ...} (no subindex or scale: there is nothing to scale).
@@ -168,6 +163,7 @@ DriveSpec read_drive(YamlMapReader m, const ModesSpec& modes) {
   d.torque_clamp_permille = m.real("torque_clamp_permille");
   d.csp_clamps_to_max_speed = m.boolean("csp_clamps_to_max_speed");
   d.soft_limits = read_enum(m, "soft_limits", kSoftLimitRules);
+  d.soft_limit_stop = read_enum(m, "soft_limit_stop", kSoftLimitStops);
   d.position_range = read_enum(m, "position_range", kPositionRangeRules);
   d.limit_switches = read_enum(m, "limit_switches", kLimitSwitchRules);
   d.brake = read_enum(m, "brake", kBrakeRules);
@@ -180,6 +176,9 @@ DriveSpec read_drive(YamlMapReader m, const ModesSpec& modes) {
   d.levels = read_levels(m.map("levels"));
   d.stepper_loop = read_stepper_loop(m.map("stepper_loop"), d.stepper);
   d.alarms = read_alarm_causes(m.map("alarms"));
+  d.vendor_stop = read_vendor_stop(m.map("vendor_stop"));
+  d.alarm_rules = read_alarm_rules(m.map("alarm_rules"));
+  d.io_rules = read_enum(m, "io_rules", kIoRuleSets);
   if (d.limit_switches == LimitSwitchRule::Alarm && d.alarms.limit_switch.empty())
     m.fail("limit_switches", "is alarm but alarms.limit_switch names no alarm");
   m.finish();
@@ -210,6 +209,7 @@ void check_drive_alarms(const ProductProfile& p, const std::string& file) {
     if (!code->empty() && p.find_alarm(*code) == nullptr)
       throw ProfileError(file + ": drive.alarms." + std::string(name) + ": '" + *code +
                          "' is not an alarm of alarms.yaml");
+  check_rule_alarms(p, file);
 }
 
 }  // namespace vdrive::profile

@@ -8,7 +8,7 @@
 namespace vdrive::profile {
 
 struct EmbeddedProfile {
-  std::string_view id;    // directory name under profiles/, e.g. "a6b"
+  std::string_view id;    // directory name under profiles/
   std::string_view yaml;  // the file's text, byte for byte
   // profiles/<id>/objects.yaml, byte for byte once the pieces are joined (empty when there is
   // none). In pieces of at most 60000 bytes cut after a newline, because ISO C++ only promises

@@ -1,6 +1,6 @@
 #pragma once
-// A product, as data: everything that makes a slave an A6B, a DS5C1 or a DS1000A-EC rather than
-// a generic ESC. Loaded from profiles/<id>/profile.yaml (see profile_loader.hpp). The object
+// A product, as data: everything that makes a slave one product rather than a generic ESC; no
+// behaviour is chosen by comparing its id. Loaded from profiles/<id>/profile.yaml (see profile_loader.hpp). The object
 // dictionary comes from profiles/<id>/objects.yaml; alarms and motors from alarms.yaml and motors.yaml.
 #include <cstdint>
 #include <optional>
@@ -8,6 +8,8 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+
+#include "vdrive/profile/product_rules.hpp"
 
 namespace vdrive::profile {
 
@@ -249,6 +251,17 @@ struct HomingSpec {
   std::vector<std::int8_t> methods;                   // 6098h values the drive accepts
   std::vector<std::int8_t> listed;                    // 60E3h subindexes 01h.. in order (may omit vendor methods)
   std::int8_t default_method = 0;                     // 6098h after power-up
+  HomingVendorMethods vendor_methods = HomingVendorMethods::None;
+  std::vector<HardStopMethod> hard_stops;             // the vendor push methods (XinjeHardStop, TorqueLimit)
+  // 607Ch applies only to 35/37; every other method makes the reference point 0.
+  bool offset_only_for_current_position = false;
+  // Every sensor stop is abrupt, 609Ah only accelerates; otherwise reversals decelerate with 609Ah
+  // and the final stop is a servo lock.
+  bool abrupt_sensor_stop = false;
+  // Methods 33/34 run on 6099h-01h alone (a 6099h-02h of 0 is then no error); false: 6099h-02h.
+  bool index_methods_use_switch_speed = true;
+  // Alarm raised when homing is cancelled between home detection and completion ("" = none).
+  std::string cancel_after_detection_alarm;
 };
 
 // A trigger source selectable for a touch-probe channel.
@@ -428,10 +441,14 @@ struct DriveSpec {
   DriveLevelSpec levels;
   StepperSpec stepper_loop;
   DriveAlarmCauses alarms;
+  VendorStopSpec vendor_stop;
+  AlarmRulesSpec alarm_rules;
+  IoRuleSet io_rules = IoRuleSet::Generic;
+  SoftLimitStop soft_limit_stop = SoftLimitStop::AtLimit;
 };
 
 struct ProductProfile {
-  std::string id;                    // "a6b", "ds5c1", "ds1000a"
+  std::string id;                    // the folder name under profiles/
   std::string title;                 // human name, e.g. "Panasonic MINAS-A6B"
   Identity identity;
   EscResources esc;

@@ -16,7 +16,7 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-// Product ids known to this build, e.g. {"a6b", "ds5c1", "ds1000a"}.
+// Product ids known to this build: the folder names under profiles/, sorted.
 std::vector<std::string> known_products();
 
 // Loads a product by id from the embedded profiles, or from `<profile_dir>/<id>/profile.yaml`

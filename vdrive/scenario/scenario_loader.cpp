@@ -13,6 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "plant/plant_yaml.hpp"
+#include "vdrive/drive/product_plant.hpp"
 #include "vdrive/fault/fault_fields.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/scenario/time_value.hpp"
@@ -470,7 +471,11 @@ Scenario parse_scenario(std::string_view text, const std::string& file) {
       const std::string rel = m.string("plant");
       const fs::path path = fs::path(rel).is_absolute() ? fs::path(rel) : base / rel;
       try {
-        sl.plant = plant::load_plant_file(path.string(), [&](std::string_view id) { return lookup(products, id); });
+        sl.plant = plant::load_plant_file(path.string(), [&](std::string_view id) -> std::optional<plant::MotorCatalogue> {
+          const profile::ProductProfile* product = lookup(products, id);
+          if (!product) return std::nullopt;
+          return drive::motor_catalogue(*product);
+        });
       } catch (const std::exception& e) {
         m.fail("plant", e.what());
       }

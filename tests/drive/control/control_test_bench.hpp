@@ -1,6 +1,6 @@
 #pragma once
 // A drive axis for the control-loop and cyclic-mode tests: a real product profile and object
-// store, 10000 user units per motor revolution, the product's default plant (plant::default_plant)
+// store, 10000 user units per motor revolution, the product's default plant (drive::default_plant)
 // stepped once per control period, the product's ControlLoop, and a mode fed by a "master" that
 // writes its targets once per bus cycle. Gains are pinned to known values unless a test asks for
 // the product's own, so tracking bounds can be derived by hand.
@@ -12,13 +12,13 @@
 #include <numbers>
 #include <string>
 
-#include "plant/motor_params.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/drive/control/control_loop.hpp"
 #include "vdrive/drive/control/motor_setpoint.hpp"
 #include "vdrive/drive/drive_context.hpp"
 #include "vdrive/drive/mode_handler.hpp"
 #include "vdrive/drive/object_ref.hpp"
+#include "vdrive/drive/product_plant.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/od/object_store.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -51,7 +51,7 @@ public:
       : profile_(load(id, tweak, pinned_gains)), dictionary_(od::shared_dictionary(profile_)), store_(*dictionary_),
         ctx_{profile_, store_, units_}, plant_(description()) {
     units_.apply({static_cast<std::uint32_t>(kUserPerRev), 1, 1, 1, static_cast<std::uint32_t>(kUserPerRev), 1, 0});
-    motor_ = plant::default_motor(profile_);
+    motor_ = drive::default_motor(profile_);
     loop_ = make_control_loop(ctx_, motor_);
     dt_ = static_cast<Nanos>(profile_.drive.control_period_ns);
   }
@@ -122,7 +122,7 @@ private:
   }
 
   plant::PlantDescription description() const {
-    plant::PlantDescription d = plant::default_plant(profile_);
+    plant::PlantDescription d = drive::default_plant(profile_);
     d.step_s = static_cast<double>(profile_.drive.control_period_ns) * 1e-9;
     return d;
   }

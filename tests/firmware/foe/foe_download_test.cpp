@@ -295,12 +295,12 @@ TEST(FoeDownload, DownloadAllocatesNothing) {
     const auto to = file.begin() + static_cast<std::ptrdiff_t>(std::min(file.size(), at + 116));
     add(foe(kData, static_cast<std::uint32_t>(packet), {from, to}));
   }
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   for (std::size_t i = 0; i < writes.size(); ++i) {
     b.run(writes[i]);
     b.run(reads[i]);
   }
-  EXPECT_EQ(test::allocation_count() - before, 0);
+  EXPECT_EQ(vdrive::test::allocation_count() - before, 0);
   // And it was a real download: the last reply is ACK 10 (read frame: 2-byte frame header,
   // 10-byte datagram header, 6-byte mailbox header, then op code and packet number).
   const std::vector<std::uint8_t>& last = reads.back();

@@ -225,12 +225,12 @@ TEST_P(MailboxOnProduct, ExchangesAllocateNothing) {
     writes.push_back(b.pdu(0x02, b.sm0_start(), window));
     reads.push_back(b.pdu(0x01, b.sm1_start(), std::vector<std::uint8_t>(b.sm1_length(), 0)));
   }
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   for (std::size_t i = 0; i < writes.size(); ++i) {
     b.run(writes[i]);
     b.run(reads[i]);
   }
-  EXPECT_EQ(test::allocation_count() - before, 0);
+  EXPECT_EQ(vdrive::test::allocation_count() - before, 0);
   // And they were real exchanges: the last read frame carries a reply (working counter 1).
   EXPECT_EQ(reads.back()[reads.back().size() - 2], 1);
 }

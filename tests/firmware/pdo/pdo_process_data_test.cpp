@@ -118,12 +118,12 @@ TEST_F(A6bProcessData, CyclicPathAllocatesNothing) {
   b.go(kOp);
   ASSERT_EQ(b.esm.state(), ecat::AlState::Op);
   b.run(lrw);  // warm up
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   for (int i = 0; i < 200; ++i) {
     outputs()[0] = static_cast<std::uint8_t>(i);
     b.run(lrw);
   }
-  EXPECT_EQ(test::allocation_count(), before);
+  EXPECT_EQ(vdrive::test::allocation_count(), before);
   EXPECT_EQ(b.value(0x6040, 0)[0], 199);
 }
 

@@ -208,9 +208,9 @@ TEST(SyncModule, Sync0CyclesDoNotAllocate) {
   d.program_sync0(1000000);
   ASSERT_TRUE(d.request_safeop().ok());
   d.run_until(d.now() + 30 * kMs);   // locked, vectors warmed up
-  const long before = test::allocation_count();
+  const long before = vdrive::test::allocation_count();
   d.run_until(d.now() + 500 * kMs);
-  EXPECT_EQ(test::allocation_count(), before);
+  EXPECT_EQ(vdrive::test::allocation_count(), before);
   EXPECT_GT(d.cycle_times.size(), 500u);
 }
 

@@ -3,20 +3,14 @@
 namespace vdrive::drive {
 
 AlarmRules alarm_rules_for(const profile::ProductProfile& profile) {
+  const profile::AlarmRulesSpec& spec = profile.drive.alarm_rules;
   AlarmRules r;
-  if (profile.id == "a6b") {
-    r.error_register = ErrorRegisterRule::AlStatusDefined;
-    r.emergency_sub_code = true;
-    r.emergency_gated_by_10f3 = true;
-    r.history = HistoryKind::DiagnosisHistory;
-    r.delayed_clear_code = "16.0";
-    r.delayed_clear_after = 10'000'000'000;  // 10 s (L32918)
-  } else if (profile.id == "ds5c1") {
-    // The DS5C1 documents 1001h like the A6B (L2559-L2581) but no emergency data bytes: data = 0.
-    r.error_register = ErrorRegisterRule::AlStatusDefined;
-    r.history = HistoryKind::XinjeMonitors;
-  }
-  // DS1000A-EC: 1001h is listed (L4433) without bit meanings, no history (L4309-L4392): generic.
+  r.error_register = spec.error_register;
+  r.emergency_sub_code = spec.emergency_sub_code;
+  r.emergency_gated_by_10f3 = spec.emergency_gated_by_10f3;
+  r.history = spec.history;
+  r.delayed_clear_code = spec.delayed_clear_code;
+  r.delayed_clear_after = static_cast<Nanos>(spec.delayed_clear_after_ms) * 1'000'000;
   return r;
 }
 

@@ -203,8 +203,8 @@ void HomingMode::start(const AxisSample& s, bool enabled) {
     return;
   }
   if (hard_ != nullptr) {
-    const bool ds5c1 = rules_.vendor == HomingRules::Vendor::Ds5c1HardStop;
-    if (ds5c1) {
+    const bool xinje = rules_.vendor == HomingRules::Vendor::XinjeHardStop;
+    if (xinje) {
       push_limit_ = 10.0 * static_cast<double>(std::max(0, stop_torque_pct_.get()));  // % -> 0.1 %
     } else {  // the torque limit in force in the push direction, at most 100 % (L3874-L3878)
       const double lim = hard_->direction > 0 ? positive_torque_.get() : negative_torque_.get();
@@ -431,7 +431,7 @@ Setpoint HomingMode::step_push(const AxisSample& s) {
   const Setpoint sp = run(s, leg_.direction * leg_.speed, push_limit_);
   bool pressing = std::abs(s.torque) >= push_limit_ * 0.98;
   Nanos hold_for = ms(torque_detect_ms_.get());  // DS1000A-EC 2142h
-  if (rules_.vendor == HomingRules::Vendor::Ds5c1HardStop) {
+  if (rules_.vendor == HomingRules::Vendor::XinjeHardStop) {
     // |torque| at P9-17 and |speed| below P9-16 for P9-18 ms (L3551).
     const double still = ctx_.units.rpm_to_user(static_cast<double>(std::max(0, stop_speed_rpm_.get())));
     pressing = pressing && std::abs(s.velocity) < still;
@@ -445,7 +445,7 @@ Setpoint HomingMode::step_push(const AxisSample& s) {
 void HomingMode::after_push(const AxisSample& s, double stop_position) {
   cmd_ = {stop_position, 0.0};  // unload the stop: the command returns to where the axis stands
   const int back = -hard_->direction;
-  if (rules_.vendor == HomingRules::Vendor::Ds1000aTorqueLimit) {
+  if (rules_.vendor == HomingRules::Vendor::TorqueLimit) {
     if (!hard_->index_after) {
       found(s, stop_position);
       return;

@@ -20,19 +20,23 @@ DriveSideAction xinje(std::int16_t v) {
 
 }  // namespace
 
+namespace {
+
+// Index 0 names no object, so the handle reads the fallback.
+ObjectRef<std::int16_t> slot(od::ObjectStore& objects, const profile::ObjectSlot& s) {
+  return ObjectRef<std::int16_t>(objects, s.index, s.subindex, s.fallback);
+}
+
+}  // namespace
+
 VendorStop::VendorStop(const DriveContext& ctx) {
-  // The product decides which parameters exist; its id picks how their values read.
-  if (ctx.profile.id == "a6b") {
-    rule_ = Rule::Panasonic;
-    servo_off_ = ObjectRef<std::int16_t>(ctx.objects, 0x3506);
-    alarm_ = ObjectRef<std::int16_t>(ctx.objects, 0x3510);
-    stop_torque_ = ObjectRef<std::int16_t>(ctx.objects, 0x3511);
-  } else if (ctx.profile.id == "ds5c1") {
-    rule_ = Rule::Xinje;
-    servo_off_ = ObjectRef<std::int16_t>(ctx.objects, 0x201B);           // P0-27, default 0 (L2170)
-    alarm_ = ObjectRef<std::int16_t>(ctx.objects, 0x201D, 0, 2);         // P0-29, default 2 (L2171)
-    stop_time_ = ObjectRef<std::int16_t>(ctx.objects, 0x201F, 0, 25);    // P0-31, 25 ms (L8682)
-  }
+  // The product names the parameters and how their values read (drive.vendor_stop).
+  const profile::VendorStopSpec& spec = ctx.profile.drive.vendor_stop;
+  rule_ = spec.rule;
+  servo_off_ = slot(ctx.objects, spec.servo_off);
+  alarm_ = slot(ctx.objects, spec.alarm);
+  stop_torque_ = slot(ctx.objects, spec.stop_torque);
+  stop_time_ = slot(ctx.objects, spec.stop_time_ms);
 }
 
 DriveSideAction VendorStop::servo_off() const {

@@ -1,16 +1,17 @@
 #pragma once
 // The vendor's own ("servo-side") stops behind option code 0 and behind every alarm that 605Eh does
 // not govern: what DriveSideAction a StopKind::DriveSide stop is, read from the product's sequence
-// parameters when the stop starts.
-//   A6B:   3506h Sequence at Servo-Off (0-9), 3510h Sequence at alarm (0-7), 3511h emergency-stop
+// parameters when the stop starts. The product's drive.vendor_stop names the rule and the
+// parameters it reads; the rules as the manuals give them:
+//   A6B (panasonic):   3506h Sequence at Servo-Off (0-9), 3510h Sequence at alarm (0-7), 3511h emergency-stop
 //          torque (L26447-L26467, L27701-L27711); 3510h 4-7 make the "immediate stop" alarms stop at
 //          once (L32910). The meaning of each value is in the basic-function spec SX-DSV03243 (not
 //          among the seeds): even = dynamic brake, odd = free run while stopping; 3506h 8/9 and
 //          3510h 4-7 immediate stop.
-//   DS5C1: P0-27 servo-OFF stop (201Bh), P0-29 alarm stop (201Dh), P0-31 deceleration stop time
+//   DS5C1 (xinje): P0-27 servo-OFF stop (201Bh), P0-29 alarm stop (201Dh), P0-31 deceleration stop time
 //          (201Fh, ms): 0/1 coast, 2/3 decelerate, 4/5 dynamic brake (L2166-L2240, L8677-L8682);
 //          alarms with the servo-off attribute always coast (L2214-L2226).
-//   DS1000A-EC: none (code 0 is CiA 402 "disable drive function": Coast).
+//   DS1000A-EC (none): no sequence (code 0 is CiA 402 "disable drive function": Coast).
 #include <cstdint>
 
 #include "vdrive/drive/drive_context.hpp"
@@ -34,7 +35,7 @@ public:
   double decelerate_time_s() const;
 
 private:
-  enum class Rule : std::uint8_t { None, Panasonic, Xinje };
+  using Rule = profile::VendorStopRule;
   Rule rule_ = Rule::None;
   ObjectRef<std::int16_t> servo_off_, alarm_, stop_torque_, stop_time_;
 };

@@ -1,6 +1,6 @@
 #pragma once
 // The CiA 402 drive as a firmware module: owns the plant the drive moves (FirmwareOptions::plant,
-// else plant::default_plant(profile); axis 0 is this drive's motor) and the DriveEngine, and runs
+// else drive::default_plant(profile); axis 0 is this drive's motor) and the DriveEngine, and runs
 // the engine's control steps on the firmware's clock: at their own period through tick(), and up to
 // the instant of each process-data exchange (outputs taken over, inputs about to be gathered), so
 // the TxPDO carries the drive's state at that moment. Emergencies go out through the mailbox.

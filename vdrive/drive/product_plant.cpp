@@ -1,14 +1,17 @@
-#include "plant/motor_params.hpp"
+#include "vdrive/drive/product_plant.hpp"
 
 #include <cmath>
 
-namespace vdrive::plant {
+namespace vdrive::drive {
+
+using plant::AxisSpec;
+using plant::MotorKind;
+using plant::MotorParams;
+using plant::PlantDescription;
 
 namespace {
 
 constexpr double kRpm = 2.0 * M_PI / 60.0;
-
-bool is_stepper_family(std::string_view product_id) { return product_id == "ds1000a"; }
 
 // Thermal network scaled so that rated current gives an 80 K steady winding rise, with a winding
 // time constant of 1 min and a housing time constant of 30 min.
@@ -23,11 +26,11 @@ void fill_thermal(MotorParams& m) {
 
 }  // namespace
 
-MotorParams motor_params_from(std::string_view product_id, const profile::MotorSpec& s) {
+MotorParams motor_params_from(const profile::MotorSpec& s, const profile::DriveSpec& drive) {
   MotorParams m;
   m.model = s.model;
   const double rated_speed = (s.rated_speed_rpm > 0 ? s.rated_speed_rpm : 3000.0) * kRpm;
-  if (is_stepper_family(product_id)) {
+  if (drive.stepper) {
     m.kind = MotorKind::stepper;
     m.rated_torque_nm = s.rated_torque_nm > 0 ? s.rated_torque_nm : 0.3;
     m.peak_torque_nm = s.peak_torque_nm > 0 ? s.peak_torque_nm : m.rated_torque_nm;
@@ -63,8 +66,8 @@ MotorParams motor_params_from(std::string_view product_id, const profile::MotorS
 }
 
 MotorParams default_motor(const profile::ProductProfile& product) {
-  if (!product.motors.empty()) return motor_params_from(product.id, product.motors.front());
-  return motor_params_from(product.id, profile::MotorSpec{});
+  if (!product.motors.empty()) return motor_params_from(product.motors.front(), product.drive);
+  return motor_params_from(profile::MotorSpec{}, product.drive);
 }
 
 PlantDescription default_plant(const profile::ProductProfile& product) {
@@ -85,4 +88,12 @@ PlantDescription default_plant(const profile::ProductProfile& product) {
   return d;
 }
 
-}  // namespace vdrive::plant
+plant::MotorCatalogue motor_catalogue(const profile::ProductProfile& product) {
+  plant::MotorCatalogue c;
+  c.default_motor = default_motor(product);
+  c.motors.reserve(product.motors.size());
+  for (const profile::MotorSpec& s : product.motors) c.motors.push_back(motor_params_from(s, product.drive));
+  return c;
+}
+
+}  // namespace vdrive::drive

@@ -1,18 +1,30 @@
 // Per-product default plants: what a drive gets with no plant file. The catalogue entries below
-// are the first entries of profiles/<id>/motors.yaml (copied as inputs, not computed).
+// are the first entries of profiles/<id>/motors.yaml (copied as inputs, not computed); the motor
+// family is the product's drive.stepper.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "plant/motor_params.hpp"
 #include "plant/plant.hpp"
+#include "plant/plant_yaml.hpp"
+#include "vdrive/drive/product_plant.hpp"
 
-namespace vdrive::plant {
+namespace vdrive::drive {
 namespace {
 
-profile::ProductProfile product(const char* id, profile::MotorSpec first) {
+using plant::AxisCommand;
+using plant::AxisSpec;
+using plant::MotorKind;
+using plant::MotorParams;
+using plant::Plant;
+using plant::PlantDescription;
+
+enum class Family { servo, stepper };
+
+profile::ProductProfile product(const char* id, Family family, profile::MotorSpec first) {
   profile::ProductProfile p;
   p.id = id;
+  p.drive.stepper = family == Family::stepper;
   p.motors.push_back(first);
   return p;
 }
@@ -30,7 +42,7 @@ profile::MotorSpec spec(const char* model, double power, double torque, double r
 }
 
 TEST(DefaultPlant, A6bIsAServoWithThe23BitAbsoluteEncoder) {
-  const PlantDescription d = default_plant(product("a6b", spec("MINAS A6 motor, 23 bit/r absolute encoder", 0, 0, 0, 0, 8388608)));
+  const PlantDescription d = default_plant(product("a6b", Family::servo, spec("MINAS A6 motor, 23 bit/r absolute encoder", 0, 0, 0, 0, 8388608)));
   ASSERT_EQ(d.axes.size(), 1u);
   const AxisSpec& a = d.axes[0];
   EXPECT_EQ(a.name, "a6b");
@@ -54,7 +66,7 @@ TEST(DefaultPlant, A6bIsAServoWithThe23BitAbsoluteEncoder) {
 
 TEST(DefaultPlant, Ds5c1TakesRatedTorqueFromItsCatalogue) {
   const PlantDescription d =
-      default_plant(product("ds5c1", spec("MS-220STE-TL70015B-411P0-XJ", 11000, 70, 1500, 0, 8388608)));
+      default_plant(product("ds5c1", Family::servo, spec("MS-220STE-TL70015B-411P0-XJ", 11000, 70, 1500, 0, 8388608)));
   EXPECT_DOUBLE_EQ(d.axes[0].motor.rated_torque_nm, 70.0);
   EXPECT_EQ(d.axes[0].motor.kind, MotorKind::servo);
   Plant p(d);
@@ -62,12 +74,12 @@ TEST(DefaultPlant, Ds5c1TakesRatedTorqueFromItsCatalogue) {
 }
 
 TEST(DefaultPlant, ServoRatedTorqueFollowsFromPowerAndSpeedWhenOnlyThoseAreKnown) {
-  const MotorParams m = motor_params_from("ds5c1", spec("MS6S-60C30B-20P4", 400, 0, 3000, 0, 0));
+  const MotorParams m = motor_params_from(spec("MS6S-60C30B-20P4", 400, 0, 3000, 0, 0), profile::DriveSpec{});
   EXPECT_NEAR(m.rated_torque_nm, 400 / (3000 * 2 * M_PI / 60), 1e-12);
 }
 
 TEST(DefaultPlant, Ds1000aIsAnOpenLoopCapableStepper) {
-  const PlantDescription d = default_plant(product("ds1000a", spec("STM28W100A", 0, 0.106, 800, 3000, 9600)));
+  const PlantDescription d = default_plant(product("ds1000a", Family::stepper, spec("STM28W100A", 0, 0.106, 800, 3000, 9600)));
   const AxisSpec& a = d.axes[0];
   EXPECT_EQ(a.motor.kind, MotorKind::stepper);
   EXPECT_DOUBLE_EQ(a.motor.rated_torque_nm, 0.106);
@@ -92,5 +104,24 @@ TEST(DefaultPlant, EmptyCatalogueStillGivesARunnablePlant) {
   EXPECT_EQ(p.axis_count(), 1u);
 }
 
+TEST(DefaultPlant, PlantFileMotorFromAProductCatalogueWithOverrides) {
+  profile::MotorSpec stm42;
+  stm42.model = "STM42W100A";
+  stm42.rated_torque_nm = 0.3;
+  stm42.max_speed_rpm = 3000;
+  stm42.encoder_counts_per_rev = 16000;
+  const profile::ProductProfile prod = product("ds1000a", Family::stepper, stm42);
+  const plant::ProductLookup lookup = [&](std::string_view id) -> std::optional<plant::MotorCatalogue> {
+    if (id == "ds1000a") return motor_catalogue(prod);
+    return std::nullopt;
+  };
+  const PlantDescription d = plant::parse_plant_yaml(
+      "plant:\n  axes:\n    - name: s\n      motor: {product: ds1000a, model: STM42W100A, rotor_inertia_kgm2: 5e-6}\n",
+      "p.yaml", lookup);
+  EXPECT_EQ(d.axes[0].motor.kind, MotorKind::stepper);
+  EXPECT_DOUBLE_EQ(d.axes[0].motor.rated_torque_nm, 0.3);
+  EXPECT_DOUBLE_EQ(d.axes[0].motor.rotor_inertia_kgm2, 5e-6);
+}
+
 }  // namespace
-}  // namespace vdrive::plant
+}  // namespace vdrive::drive

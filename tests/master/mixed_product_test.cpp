@@ -1,0 +1,71 @@
+// A product is data: Mixed402 exists only as files under tests/products/ (no code names it). It
+// mixes rules of the three real products (Xinje vendor stop, A6B alarm reporting and soft-limit
+// ramp, DS1000A-EC homing table, DS5C1 I/O rules). The normal loader reads it, the project master
+// takes it to Op with DC at 1 ms and enables it in cyclic synchronous position: the statusword shows
+// Operation enabled and the position follows a sine within the following-error window.
+#include <gtest/gtest.h>
+
+#include "master/cia402_program.hpp"
+#include "master/master.hpp"
+#include "master/op_run.hpp"
+#include "tests/master/virtual_line.hpp"
+
+namespace vdrive::master {
+namespace {
+
+network::NetworkOptions test_products() {
+  network::NetworkOptions o;
+  o.profile_dir = VDRIVE_TEST_PRODUCTS_DIR;
+  return o;
+}
+
+TEST(MixedProduct, LoadsWithTheRulesItsFilesName) {
+  test::VirtualLine line({"mixed402"}, test_products());
+  const profile::ProductProfile& p = line.network().profile(0);
+  EXPECT_EQ(p.identity.vendor_id, 0x00000402u);
+  EXPECT_EQ(p.drive.vendor_stop.rule, profile::VendorStopRule::Xinje);
+  EXPECT_EQ(p.drive.alarm_rules.error_register, profile::ErrorRegisterRule::AlStatusDefined);
+  EXPECT_TRUE(p.drive.alarm_rules.emergency_sub_code);
+  EXPECT_EQ(p.drive.io_rules, profile::IoRuleSet::DS5C1);
+  EXPECT_EQ(p.drive.soft_limit_stop, profile::SoftLimitStop::Ramp);
+  EXPECT_EQ(p.homing.vendor_methods, profile::HomingVendorMethods::TorqueLimit);
+  EXPECT_EQ(p.homing.hard_stops.size(), 4u);
+}
+
+TEST(MixedProduct, MasterTakesItToOpAndItFollowsInCsp) {
+  test::VirtualLine line({"mixed402"}, test_products());
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 1u);
+  master.set_mailbox_timeout(20'000'000);
+
+  SineProgramOptions sine;
+  sine.cycle = 1'000'000;
+  sine.frequency_hz = 1.0;
+  sine.motion = 1'000'000'000;
+  SineProgram program(sine);
+  OpRunOptions options;
+  options.cycle = 1'000'000;
+  options.dc = true;
+  options.drift_frames = 200;
+  options.mailbox_timeout = 20'000'000;
+  program.attach(options);
+  options.cycles = program.cycles_needed(options.cycle);
+
+  const OpRunResult result = run_to_op(master, options);
+  ASSERT_TRUE(result.reached_op) << result.error << " AL status code 0x" << std::hex
+                                 << (line.network().esc(0).peek(0x0134) | line.network().esc(0).peek(0x0135) << 8);
+  EXPECT_EQ(result.stats.wrong_wkc, 0u);
+  EXPECT_EQ(result.left_op, 0u);
+  ASSERT_EQ(program.results().size(), 1u);
+  const DriveResult& r = program.results()[0];
+  EXPECT_TRUE(r.enabled) << describe(r);
+  EXPECT_FALSE(r.faulted) << describe(r);
+  EXPECT_EQ(r.statusword & 0x006F, 0x0027) << describe(r);  // Operation enabled
+  EXPECT_GE(r.samples, 900u) << describe(r);
+  EXPECT_GT(r.amplitude, 0.0) << describe(r);
+  EXPECT_GT(r.max_following_error, 0) << describe(r) << ": a moving axis lags a little";
+  EXPECT_LE(r.max_following_error, r.following_window) << describe(r);
+}
+
+}  // namespace
+}  // namespace vdrive::master
