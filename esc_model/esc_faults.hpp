@@ -1,5 +1,5 @@
 #pragma once
-// Faults an ESC can be told to have (fault injection, issue 7). The chip knows nothing of drives:
+// Faults an ESC can be told to have (fault injection). The chip knows nothing of drives:
 // each fault changes only what the silicon would do, and the firmware reacts on its own.
 //
 //   wkc_error            the datagram engine executes nothing addressed to this ESC and never

@@ -1,5 +1,5 @@
 #pragma once
-// Faults of the machine an axis moves (issue 7), switched on and off by a fault injector through
+// Faults of the machine an axis moves, switched on and off by a fault injector through
 // Plant::set_axis_faults. Each lasts until the next call changes it; all default to "healthy".
 // Jam and obstacle are joint stops (ODE limit rows), so they hold as hard as the machine's own end
 // stops; load_scale scales the load body's own mass and inertia (not the reflected rotor);

@@ -1,5 +1,5 @@
 #pragma once
-// Causes a fault injector (issue 7) can switch on and off on a drive: each stands for a condition
+// Causes a fault injector can switch on and off on a drive: each stands for a condition
 // the real drive detects (a lost encoder, a bus voltage out of range, ...). While one is active its
 // cause is present: the product's alarm for it (profile.drive.alarms) is raised and cannot be
 // cleared; once it is inactive the product's own clearing procedure applies. The engine side is

@@ -1,5 +1,5 @@
 #pragma once
-// The limits every set-point passes before the control loops (issue 5 item 3): software position
+// The limits every set-point passes before the control loops: software position
 // limits 607Dh on position set-points (profile.drive.soft_limits: always once referenced / only
 // after homing / ignored; the A6B decelerates by 6085h from the limit, the others stop at it),
 // limit switches (profile.drive.limit_switches: no motion into an active limit), and the torque

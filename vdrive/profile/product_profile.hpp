@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "ethercat/al_status_code.hpp"
+
 #include "vdrive/profile/product_rules.hpp"
 
 namespace vdrive::profile {
@@ -64,27 +66,28 @@ struct EscResources {
   std::uint16_t extended_pdi_config = 0, station_alias = 0;
 };
 
-// AL status codes the product reports, by situation. 0 = the product does not report one.
+// AL status codes the product reports, by situation: ETG.1000.6's code unless profile.yaml names the
+// product's own. 0 = the product does not report one.
 struct AlStatusCodes {
-  std::uint16_t invalid_transition = 0x0011;
-  std::uint16_t unknown_state = 0x0012;
-  std::uint16_t bootstrap_not_supported = 0x0013;
-  std::uint16_t invalid_mailbox_config = 0x0016;
-  std::uint16_t invalid_boot_mailbox_config = 0x0015;
+  std::uint16_t invalid_transition = ecat::al_status_code::kInvalidStateChange;
+  std::uint16_t unknown_state = ecat::al_status_code::kUnknownState;
+  std::uint16_t bootstrap_not_supported = ecat::al_status_code::kBootstrapNotSupported;
+  std::uint16_t invalid_mailbox_config = ecat::al_status_code::kInvalidMailboxConfig;
+  std::uint16_t invalid_boot_mailbox_config = ecat::al_status_code::kInvalidBootMailboxConfig;
   // Codes checked at PreOp->SafeOp and in SafeOp/Op (ETG.1000.6 names; products pick their own).
-  std::uint16_t sync_watchdog = 0x001B;               // process-data (SM2) watchdog expired
-  std::uint16_t invalid_output_config = 0x001D;       // SM2
-  std::uint16_t invalid_input_config = 0x001E;        // SM3
-  std::uint16_t invalid_watchdog_config = 0x001F;
-  std::uint16_t invalid_input_mapping = 0x0024;       // TxPDO
-  std::uint16_t invalid_output_mapping = 0x0025;      // RxPDO
-  std::uint16_t sync_mode_not_supported = 0x0028;
-  std::uint16_t sync_error = 0x002C;                  // SYNC0/IRQ missed
-  std::uint16_t no_sync_error = 0x002D;               // sync not locked in time
-  std::uint16_t invalid_dc_sync_config = 0x0030;
-  std::uint16_t pll_error = 0x0032;
-  std::uint16_t invalid_sync_cycle_time = 0x0035;
-  std::uint16_t eeprom_error = 0x0051;                // SII EEPROM/identity mismatch
+  std::uint16_t sync_watchdog = ecat::al_status_code::kSyncManagerWatchdog;  // process-data (SM2) watchdog expired
+  std::uint16_t invalid_output_config = ecat::al_status_code::kInvalidOutputConfig;  // SM2
+  std::uint16_t invalid_input_config = ecat::al_status_code::kInvalidInputConfig;  // SM3
+  std::uint16_t invalid_watchdog_config = ecat::al_status_code::kInvalidWatchdogConfig;
+  std::uint16_t invalid_input_mapping = ecat::al_status_code::kInvalidInputMapping;  // TxPDO
+  std::uint16_t invalid_output_mapping = ecat::al_status_code::kInvalidOutputMapping;  // RxPDO
+  std::uint16_t sync_mode_not_supported = ecat::al_status_code::kSyncModeNotSupported;
+  std::uint16_t sync_error = ecat::al_status_code::kFatalSyncError;  // SYNC0/IRQ missed
+  std::uint16_t no_sync_error = ecat::al_status_code::kNoSyncError;  // sync not locked in time
+  std::uint16_t invalid_dc_sync_config = ecat::al_status_code::kInvalidDcSyncConfig;
+  std::uint16_t pll_error = ecat::al_status_code::kPllError;
+  std::uint16_t invalid_sync_cycle_time = ecat::al_status_code::kDcInvalidSyncCycleTime;
+  std::uint16_t eeprom_error = ecat::al_status_code::kEepromError;  // SII EEPROM/identity mismatch
 };
 
 // One entry of a default PDO mapping (SII TxPDO/RxPDO categories, 16xxh/1Axxh).
@@ -333,7 +336,7 @@ struct ParameterRef {
   double fallback = 0.0;
 };
 
-// Where the drive's control loops take their gains from (issue 5 item 5).
+// Where the drive's control loops take their gains from.
 struct ControlGainSpec {
   ParameterRef position_gain;                         // Kp, 1/s
   ParameterRef velocity_gain;                         // velocity-loop bandwidth, Hz
@@ -389,7 +392,7 @@ enum class BrakeRule : std::uint8_t {
   Master,          // 60FEh-01h bit 0 under the 60FEh-02h mask (DS1000A-EC)
 };
 
-// Vendor levels the drive's own supervision uses (issue 5 item 6).
+// Vendor levels the drive's own supervision uses.
 struct DriveLevelSpec {
   ParameterRef following_error;                       // alarm level (A6B 3014h Pr0.14, DS5C1 P0-23, DS1000A 2108h)
   bool following_error_in_increments = false;         // level in encoder increments (else user units)
@@ -407,7 +410,7 @@ struct StepperSpec {
   ParameterRef run_current;                           // open-loop current, as a fraction of rated (scale to 0..1)
 };
 
-// Profile position (pp) set-point handling where the products differ (issue 5 item 2).
+// Profile position (pp) set-point handling where the products differ.
 struct ProfilePositionSpec {
   bool buffered_set_point = true;       // one set-point waits behind the executing one (A6B L15728-L15757);
                                         // false: a set-point given during a move without bit 5 is dropped (DS5C1 L3764)
@@ -470,7 +473,7 @@ struct ProductProfile {
   // Default PDO mappings (factory values), in object order. Empty when the manual gives none.
   std::vector<PdoSpec> rx_pdos;
   std::vector<PdoSpec> tx_pdos;
-  // Issue 3 item 2: the rest of the product (profile.yaml keys sync, pdo_rules, modes, homing,
+  // The rest of the product (profile.yaml keys sync, pdo_rules, modes, homing,
   // touch_probe; alarms.yaml; motors.yaml).
   SyncSpec sync;
   PdoRules pdo_rules;
@@ -479,7 +482,7 @@ struct ProductProfile {
   TouchProbeSpec touch_probe;
   std::vector<AlarmSpec> alarms;                      // profiles/<id>/alarms.yaml, in manual order
   std::vector<MotorSpec> motors;                      // profiles/<id>/motors.yaml (at least one entry)
-  DriveSpec drive;                                    // profile.yaml `drive` (issue 5)
+  DriveSpec drive;                                    // profile.yaml `drive`
 
   // The alarm with vendor code `code` ("80.4", "E-804", "FF80h"), or nullptr.
   const AlarmSpec* find_alarm(std::string_view code) const {

@@ -1,5 +1,5 @@
 #pragma once
-// The drive's vendor alarms (issue 5 item 6): which alarms of the product's table
+// The drive's vendor alarms: which alarms of the product's table
 // (profiles/<id>/alarms.yaml) are active, what 603Fh and 1001h show, the emergency message each
 // alarm and the final clear send, the alarm history, and whether a fault reset may clear them.
 //

@@ -1,6 +1,6 @@
 #pragma once
-// The simulated causes of the alarms the drive supervises itself, checked every control step
-// (issue 5 item 6). Each cause raises the product's alarm named in profile.drive.alarms and stays
+// The simulated causes of the alarms the drive supervises itself, checked every control step.
+// Each cause raises the product's alarm named in profile.drive.alarms and stays
 // "present" (blocking the clear) while it lasts:
 //  - following error: |deviation| > profile.drive.levels.following_error while enabled (A6B 3014h
 //    Pr0.14 -> Err24.0, DS5C1 P0-23 -> E-100 L7279, DS1000A-EC 2108h in pulses -> FF02h L4336-L4350);

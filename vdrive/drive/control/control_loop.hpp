@@ -1,5 +1,5 @@
 #pragma once
-// The drive's inner loops (issue 5 item 5): each control step (profile.drive.control_period_ns)
+// The drive's inner loops: each control step (profile.drive.control_period_ns)
 // they turn a motor-side set-point into what the power stage does to the motor, a plant
 // AxisCommand. Independent of the bus cycle. Servos run position P -> velocity PI -> torque filter
 // -> torque limit (ServoLoop); the DS1000A-EC closed-loop stepper runs the same cascade or drives

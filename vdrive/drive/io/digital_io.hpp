@@ -1,5 +1,5 @@
 #pragma once
-// Digital inputs 60FDh and outputs 60FEh (issue 5 item 7), as each product maps them.
+// Digital inputs 60FDh and outputs 60FEh, as each product maps them.
 // Inputs: the plant's sensors and the TO/STO input go through the product's input logic
 // (InputLogic) and become
 //  - the din:: bits the drive acts on, in the user frame: positive_limit is the switch at the end

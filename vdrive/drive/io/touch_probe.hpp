@@ -1,5 +1,5 @@
 #pragma once
-// Touch probe 60B8h/60B9h (issue 5 item 4): latches the position (60BAh-60BDh, user units) on
+// Touch probe 60B8h/60B9h: latches the position (60BAh-60BDh, user units) on
 // edges of a trigger signal, per channel 1/2, as each product documents it:
 //  - 60B8h bits 1-7 / 9-15 are taken over on the 0->1 edge of bit 0 / bit 8 and ignored while the
 //    channel runs (A6B L25619-L25621, DS5C1 L4668-L4672); bit 1/9 first event (one latch per

@@ -1,5 +1,5 @@
 #pragma once
-// Mailbox faults a test or scenario can give a slave (fault injection, issue 7). Each is
+// Mailbox faults a test or scenario can give a slave (fault injection). Each is
 // one-shot: MailboxModule counts it down (or clears it) as it acts, so faults() shows what is
 // still to come. They act on every message the slave writes to SM1 (replies, mailbox errors,
 // emergencies, a resend after a repeat request), not on what the master writes.

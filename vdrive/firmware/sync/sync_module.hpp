@@ -1,5 +1,5 @@
 #pragma once
-// Synchronisation of the drive to the master (issue 4 item 5), as a firmware module:
+// Synchronisation of the drive to the master, as a firmware module:
 //  - PreOp->SafeOp: reads 0981h/09A0h through the PDI and 1C32h/1C33h, applies the product's
 //    rewrite (profile sync.sync_types_follow_dc_activation) and checks (sync_check.hpp): 0x0028 / 0x0030 / 0x0035, fallback PreOp.
 //    Publishes what the drive runs: 1C3xh-0Ah = 09A0h in DC mode, read-only cycle times.
