@@ -10,6 +10,7 @@
 #include "master/cia402_program.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
+#include "tests/master/csp_sine_run.hpp"
 #include "tests/master/virtual_line.hpp"
 
 namespace vdrive::master {
@@ -21,25 +22,13 @@ TEST(Cia402Sine, EachDriveFollowsASineInCspAt1msDc) {
   ASSERT_EQ(master.scan(), 3u);
   master.set_mailbox_timeout(20'000'000);
 
-  SineProgramOptions sine;
-  sine.cycle = 1'000'000;
-  sine.frequency_hz = 1.0;
-  sine.motion = 2'000'000'000;
-  SineProgram program(sine);
-  OpRunOptions options;
-  options.cycle = 1'000'000;
-  options.dc = true;
-  options.drift_frames = 200;
-  options.mailbox_timeout = 20'000'000;
-  program.attach(options);
-  options.cycles = program.cycles_needed(options.cycle);
-
-  const OpRunResult result = run_to_op(master, options);
+  const test::CspSineRun run = test::run_csp_sine_at_1ms(master, 2'000'000'000);
+  const OpRunResult& result = run.result;
   ASSERT_TRUE(result.reached_op) << result.error;
   EXPECT_EQ(result.stats.wrong_wkc, 0u);
   EXPECT_EQ(result.left_op, 0u);
-  ASSERT_EQ(program.results().size(), 3u);
-  for (const DriveResult& r : program.results()) {
+  ASSERT_EQ(run.drives.size(), 3u);
+  for (const DriveResult& r : run.drives) {
     std::printf("drive 0x%04X: amplitude %.0f, max |60F4h| %lld, 6065h %u, %llu samples, 6041h %04X, 603Fh %04X %s\n",
                 r.station, r.amplitude, static_cast<long long>(r.max_following_error), r.following_window,
                 static_cast<unsigned long long>(r.samples), r.statusword, r.error_code, r.note.c_str());

@@ -8,6 +8,7 @@
 #include "master/cia402_program.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
+#include "tests/master/csp_sine_run.hpp"
 #include "tests/master/virtual_line.hpp"
 
 namespace vdrive::master {
@@ -38,26 +39,14 @@ TEST(MixedProduct, MasterTakesItToOpAndItFollowsInCsp) {
   ASSERT_EQ(master.scan(), 1u);
   master.set_mailbox_timeout(20'000'000);
 
-  SineProgramOptions sine;
-  sine.cycle = 1'000'000;
-  sine.frequency_hz = 1.0;
-  sine.motion = 1'000'000'000;
-  SineProgram program(sine);
-  OpRunOptions options;
-  options.cycle = 1'000'000;
-  options.dc = true;
-  options.drift_frames = 200;
-  options.mailbox_timeout = 20'000'000;
-  program.attach(options);
-  options.cycles = program.cycles_needed(options.cycle);
-
-  const OpRunResult result = run_to_op(master, options);
+  const test::CspSineRun run = test::run_csp_sine_at_1ms(master, 1'000'000'000);
+  const OpRunResult& result = run.result;
   ASSERT_TRUE(result.reached_op) << result.error << " AL status code 0x" << std::hex
                                  << (line.network().esc(0).peek(0x0134) | line.network().esc(0).peek(0x0135) << 8);
   EXPECT_EQ(result.stats.wrong_wkc, 0u);
   EXPECT_EQ(result.left_op, 0u);
-  ASSERT_EQ(program.results().size(), 1u);
-  const DriveResult& r = program.results()[0];
+  ASSERT_EQ(run.drives.size(), 1u);
+  const DriveResult& r = run.drives[0];
   EXPECT_TRUE(r.enabled) << describe(r);
   EXPECT_FALSE(r.faulted) << describe(r);
   EXPECT_EQ(r.statusword & 0x006F, 0x0027) << describe(r);  // Operation enabled

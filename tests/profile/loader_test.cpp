@@ -2,12 +2,12 @@
 // produces a message naming the file, the line and the field.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
 
+#include "tests/profile/profile_text_edit.hpp"
 #include "vdrive/profile/embedded_profiles.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
@@ -16,26 +16,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string embedded_text(std::string_view id) {
-  for (const auto& e : embedded_profiles())
-    if (e.id == id) return std::string(e.yaml);
-  ADD_FAILURE() << "no embedded profile " << id;
-  return {};
-}
+using test::line_of;
+using test::replace_once;
 
-// 1-based line of the first line containing `needle`.
-int line_of(const std::string& text, const std::string& needle) {
-  const auto pos = text.find(needle);
-  EXPECT_NE(pos, std::string::npos) << needle;
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
-
-std::string replace_once(std::string text, const std::string& from, const std::string& to) {
-  const auto pos = text.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  if (pos != std::string::npos) text.replace(pos, from.size(), to);
-  return text;
-}
+std::string embedded_text(std::string_view id) { return test::embedded_texts(id).profile; }
 
 // A profile directory in the temp dir holding one product file.
 class TempProfileDir {

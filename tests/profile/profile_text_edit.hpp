@@ -49,8 +49,9 @@ inline LoadResult load_texts(const std::string& id, const ProductTexts& t) {
   const fs::path root = fs::temp_directory_path() / ("vdrive_profile_edit_" + std::string(info->name()));
   fs::create_directories(root / id);
   std::ofstream(root / id / "profile.yaml") << t.profile;
-  std::ofstream(root / id / "alarms.yaml") << t.alarms;
-  std::ofstream(root / id / "motors.yaml") << t.motors;
+  // An empty text leaves the file out (a test of the missing file).
+  if (!t.alarms.empty()) std::ofstream(root / id / "alarms.yaml") << t.alarms;
+  if (!t.motors.empty()) std::ofstream(root / id / "motors.yaml") << t.motors;
   LoadResult r{{}, (root / id).string()};
   try {
     load_profile(id, root.string());
@@ -61,9 +62,13 @@ inline LoadResult load_texts(const std::string& id, const ProductTexts& t) {
   return r;
 }
 
-// "<dir>/profile.yaml:<line of needle>: "
+// "<dir>/<file>:<line of needle>: ", the start of the loader's message about that line of `file`.
+inline std::string where(const LoadResult& r, const std::string& file, const std::string& text,
+                         const std::string& needle) {
+  return r.dir + "/" + file + ":" + std::to_string(line_of(text, needle)) + ": ";
+}
 inline std::string at(const LoadResult& r, const std::string& text, const std::string& needle) {
-  return r.dir + "/profile.yaml:" + std::to_string(line_of(text, needle)) + ": ";
+  return where(r, "profile.yaml", text, needle);
 }
 
 }  // namespace vdrive::profile::test

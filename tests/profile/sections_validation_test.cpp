@@ -2,70 +2,22 @@
 // refused with a message naming the file, the line and the field.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
-#include "vdrive/profile/embedded_profiles.hpp"
+#include "tests/profile/profile_text_edit.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
 namespace vdrive::profile {
 namespace {
 
-namespace fs = std::filesystem;
+using test::line_of;
+using test::LoadResult;
+using test::replace_once;
+using test::where;
+using Texts = test::ProductTexts;
 
-struct Texts {
-  std::string profile, alarms, motors;
-};
-
-Texts embedded(std::string_view id) {
-  for (const auto& e : embedded_profiles())
-    if (e.id == id) return {std::string(e.yaml), std::string(e.alarms_yaml), std::string(e.motors_yaml)};
-  ADD_FAILURE() << "no embedded profile " << id;
-  return {};
-}
-
-std::string replace_once(std::string text, const std::string& from, const std::string& to) {
-  const auto pos = text.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  if (pos != std::string::npos) text.replace(pos, from.size(), to);
-  return text;
-}
-
-// 1-based line of the first occurrence of `needle`.
-int line_of(const std::string& text, const std::string& needle) {
-  const auto pos = text.find(needle);
-  EXPECT_NE(pos, std::string::npos) << needle;
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
-
-// Writes the three files of product `id` to a temp dir, loads it, returns the error ("" if none)
-// and the product directory (for the expected file names).
-struct LoadResult {
-  std::string error, dir;
-};
-
-LoadResult load(const std::string& id, const Texts& t) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path root = fs::temp_directory_path() / ("vdrive_sections_test_" + std::string(info->name()));
-  fs::create_directories(root / id);
-  std::ofstream(root / id / "profile.yaml") << t.profile;
-  if (!t.alarms.empty()) std::ofstream(root / id / "alarms.yaml") << t.alarms;
-  if (!t.motors.empty()) std::ofstream(root / id / "motors.yaml") << t.motors;
-  LoadResult r{{}, (root / id).string()};
-  try {
-    load_profile(id, root.string());
-  } catch (const ProfileError& e) {
-    r.error = e.what();
-  }
-  fs::remove_all(root);
-  return r;
-}
-
-std::string where(const LoadResult& r, const std::string& file, const std::string& text, const std::string& needle) {
-  return r.dir + "/" + file + ":" + std::to_string(line_of(text, needle)) + ": ";
-}
+Texts embedded(std::string_view id) { return test::embedded_texts(id); }
+LoadResult load(const std::string& id, const Texts& t) { return test::load_texts(id, t); }
 
 TEST(ProfileSectionsValidation, UnmodifiedFilesLoad) {
   for (const char* id : {"a6b", "ds5c1", "ds1000a"}) EXPECT_EQ(load(id, embedded(id)).error, "") << id;
