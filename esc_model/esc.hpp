@@ -89,6 +89,10 @@ public:
   // Test and tooling access to the raw memory, without side effects. The SII (0x0500-0x050F)
   // and DC (0x0900-0x09FF) windows live in SiiEeprom/DcUnit and read 0 here.
   std::uint8_t peek(std::uint16_t address) const;
+  // Two bytes as a little-endian word (AL Status, AL Status Code, counters).
+  std::uint16_t peek_u16(std::uint16_t address) const {
+    return static_cast<std::uint16_t>(peek(address) | peek(static_cast<std::uint16_t>(address + 1)) << 8);
+  }
 
 private:
   struct Impl;

@@ -7,6 +7,7 @@
 
 #include "ethercat/little_endian.hpp"
 #include "ethercat/registers.hpp"
+#include "ethercat/sii.hpp"
 
 namespace vdrive::esc {
 namespace {
@@ -184,7 +185,7 @@ bool SiiEeprom::config_area_valid() const {
     const std::uint16_t v = word(w);
     ecat::put_le16(&bytes[2 * w], v);
   }
-  return sii_config_crc(bytes) == static_cast<std::uint8_t>(word(7));
+  return sii_config_crc(bytes) == static_cast<std::uint8_t>(word(ecat::sii::kWordConfigChecksum));
 }
 
 std::uint16_t SiiEeprom::word(std::size_t word_address) const {

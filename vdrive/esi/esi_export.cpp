@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ethercat/little_endian.hpp"
+#include "ethercat/sii.hpp"
 #include "vdrive/esi/esi_dictionary.hpp"
 #include "vdrive/esi/esi_names.hpp"
 #include "vdrive/esi/xml_writer.hpp"
@@ -129,8 +130,7 @@ void write_pdos(XmlWriter& xml, const ProductProfile& p, const od::Dictionary& d
 }
 
 void write_mailbox(XmlWriter& xml, const ProductProfile& p) {
-  constexpr std::uint16_t kCoE = 0x0004;
-  const bool coe = (p.mailbox.protocols & kCoE) != 0;
+  const bool coe = (p.mailbox.protocols & ecat::sii::mailbox_protocol::kCoE) != 0;
   const bool foe = p.foe_details != 0;  // what the firmware supports, not the SII protocol word
   if (!coe && !foe) return;
   xml.open("Mailbox");

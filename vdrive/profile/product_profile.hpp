@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ethercat/al_status_code.hpp"
+#include "ethercat/sii.hpp"
 
 #include "vdrive/profile/product_rules.hpp"
 
@@ -42,7 +43,7 @@ struct Mailbox {
   std::uint16_t rx_offset = 0x1000, rx_size = 0x80;   // master -> slave (SM0)
   std::uint16_t tx_offset = 0x1080, tx_size = 0x80;   // slave -> master (SM1)
   std::optional<std::uint16_t> boot_rx_offset, boot_rx_size, boot_tx_offset, boot_tx_size;
-  std::uint16_t protocols = 0x0004;                  // SII word 0x1C: bit2 CoE, bit3 FoE, ...
+  std::uint16_t protocols = ecat::sii::mailbox_protocol::kCoE;  // SII word 0x1C
 };
 
 // Rules the firmware checks for the mailbox SyncManagers at Init->Pre-Op (and Init->Boot).

@@ -4,30 +4,14 @@
 #include <string>
 
 #include "esc_model/sii_eeprom.hpp"
+#include "ethercat/sii.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
 namespace vdrive::profile {
 namespace {
 
-// ETG.1000.6 Table 19 category types.
-enum Category : std::uint16_t {
-  kStrings = 10,
-  kGeneral = 30,
-  kFmmu = 40,
-  kSyncManager = 41,
-  kTxPdo = 50,
-  kRxPdo = 51,
-  kEnd = 0xFFFF,
-};
-
-// FMMU category usage bytes (ETG.1000.6 Table 23).
-constexpr std::uint8_t kFmmuOutputs = 1, kFmmuInputs = 2, kFmmuMailboxState = 3, kFmmuUnused = 0;
-
-// General category flag (ETG.2010): the Explicit Device ID is reported in AL status code 0x0134.
-constexpr std::uint8_t kFlagIdentAlStatus = 0x08;
-
-// PDO flags (ETG.2010): in the default assignment; content cannot be changed.
-constexpr std::uint16_t kPdoDefault = 0x0002, kPdoFixedContent = 0x0010;
+using ecat::sii::Category;
+namespace fmmu_usage = ecat::sii::fmmu_usage;
 
 // Little-endian byte appender.
 class Bytes {
@@ -76,7 +60,7 @@ private:
 
 void category(Bytes& image, Category type, Bytes body, std::uint8_t pad) {
   body.pad_to_word(pad);
-  image.u16(type);
+  image.u16(static_cast<std::uint16_t>(type));
   image.u16(static_cast<std::uint16_t>(body.data().size() / 2));
   image.data().insert(image.data().end(), body.data().begin(), body.data().end());
 }
@@ -107,7 +91,7 @@ Bytes general(const ProductProfile& p, StringTable& strings) {
   g.u8(0);                                             // 0x08 SoE channels
   g.u8(0);                                             // 0x09 DS402 channels (reserved)
   g.u8(0);                                             // 0x0A SysmanClass (reserved)
-  g.u8(p.explicit_device_id ? kFlagIdentAlStatus : 0); // 0x0B flags
+  g.u8(p.explicit_device_id ? ecat::sii::kGeneralFlagIdentAlStatus : 0); // 0x0B flags
   g.u16(0);                                            // 0x0C current on E-Bus: RJ45 device
   g.u16(physical_ports(p.esc.port_descriptor));        // 0x0E physical ports
   g.u16(0);                                            // 0x10 physical memory address (IdentPhyM unused)
@@ -117,8 +101,8 @@ Bytes general(const ProductProfile& p, StringTable& strings) {
 
 Bytes fmmus(const ProductProfile& p) {
   Bytes f;
-  constexpr std::uint8_t order[] = {kFmmuOutputs, kFmmuInputs, kFmmuMailboxState};
-  for (std::uint8_t i = 0; i < p.esc.fmmu_count; ++i) f.u8(i < 3 ? order[i] : kFmmuUnused);
+  constexpr std::uint8_t order[] = {fmmu_usage::kOutputs, fmmu_usage::kInputs, fmmu_usage::kMailboxState};
+  for (std::uint8_t i = 0; i < p.esc.fmmu_count; ++i) f.u8(i < 3 ? order[i] : fmmu_usage::kUnused);
   return f;  // padded with 0xFF ("not used") by category()
 }
 
@@ -142,8 +126,8 @@ Bytes pdo(const PdoSpec& pdo, StringTable& strings) {
   b.u8(pdo.sync_manager);
   b.u8(0);  // DC synchronisation
   b.u8(strings.index_of(pdo.name));
-  std::uint16_t flags = pdo.sync_manager != 0xFF ? kPdoDefault : 0;
-  if (pdo.fixed) flags |= kPdoFixedContent;
+  std::uint16_t flags = pdo.sync_manager != 0xFF ? ecat::sii::kPdoFlagDefault : 0;
+  if (pdo.fixed) flags |= ecat::sii::kPdoFlagFixedContent;
   b.u16(flags);
   for (const auto& e : pdo.entries) {
     b.u16(e.index);
@@ -191,7 +175,7 @@ std::vector<std::uint8_t> build_sii_image(const ProductProfile& p) {
   image.u16(mb.tx_size);
   image.u16(mb.protocols);
   // Words 0x1D-0x3D reserved; 0x3E size as (kbit - 1); 0x3F version 1.
-  image.data().resize(0x3E * 2, 0);
+  image.data().resize(ecat::sii::kWordEepromSize * 2, 0);
   image.u16(static_cast<std::uint16_t>(p.esc.eeprom_bytes * 8 / 1024 - 1));
   image.u16(1);
 
@@ -206,13 +190,13 @@ std::vector<std::uint8_t> build_sii_image(const ProductProfile& p) {
   for (const auto& r : p.rx_pdos) rx.push_back(pdo(r, strings));
   Bytes str;
   strings.write(str);
-  category(image, kStrings, std::move(str), 0x00);
-  category(image, kGeneral, std::move(gen), 0x00);
-  category(image, kFmmu, fmmus(p), 0xFF);
-  category(image, kSyncManager, sync_managers(p), 0x00);
-  for (auto& t : tx) category(image, kTxPdo, std::move(t), 0x00);
-  for (auto& r : rx) category(image, kRxPdo, std::move(r), 0x00);
-  image.u16(kEnd);
+  category(image, Category::Strings, std::move(str), 0x00);
+  category(image, Category::General, std::move(gen), 0x00);
+  category(image, Category::Fmmu, fmmus(p), 0xFF);
+  category(image, Category::SyncManager, sync_managers(p), 0x00);
+  for (auto& t : tx) category(image, Category::TxPdo, std::move(t), 0x00);
+  for (auto& r : rx) category(image, Category::RxPdo, std::move(r), 0x00);
+  image.u16(static_cast<std::uint16_t>(Category::End));
 
   auto& bytes = image.data();
   if (bytes.size() > p.esc.eeprom_bytes)

@@ -17,10 +17,6 @@ constexpr std::uint16_t kErrorCountersFirst = ecat::reg::kRxErrorCounter,
 constexpr std::uint16_t kAlErrorFlag = ecat::reg::kAlErrorFlag;
 constexpr std::size_t kSlavesShownOneByOne = 8;
 
-std::uint16_t peek16(esc::Esc& esc, std::uint16_t address) {
-  return static_cast<std::uint16_t>(esc.peek(address) | esc.peek(static_cast<std::uint16_t>(address + 1)) << 8);
-}
-
 std::string slave_text(const SlaveStatus& s) {
   std::string text = al_state_name(s.al_status);
   if (s.al_status & kAlErrorFlag) text += fmt::format("+E({:04X})", s.al_status_code);
@@ -33,8 +29,8 @@ void LineStatusPublisher::sample() {
   for (std::size_t i = 0; i < status_.slaves(); ++i) {
     esc::Esc& esc = network_.esc(i);
     SlaveStatus s;
-    s.al_status = peek16(esc, kAlStatus);
-    s.al_status_code = peek16(esc, kAlStatusCode);
+    s.al_status = esc.peek_u16(kAlStatus);
+    s.al_status_code = esc.peek_u16(kAlStatusCode);
     for (std::uint16_t a = kErrorCountersFirst; a <= kErrorCountersLast; ++a) s.rx_errors += esc.peek(a);
     status_.publish(i, s);
   }

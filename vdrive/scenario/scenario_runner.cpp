@@ -181,10 +181,7 @@ private:
     return text;
   }
 
-  std::uint16_t peek16(std::size_t i, std::uint16_t address) {
-    esc::Esc& e = network_.esc(i);
-    return static_cast<std::uint16_t>(e.peek(address) | e.peek(static_cast<std::uint16_t>(address + 1)) << 8);
-  }
+  std::uint16_t peek16(std::size_t i, std::uint16_t address) { return network_.esc(i).peek_u16(address); }
 
   void start() {
     // Mailbox steps hold the cyclic frames while they wait (see the header): a short timeout keeps

@@ -20,10 +20,6 @@ namespace {
 constexpr std::uint16_t kAlStatus = ecat::reg::kAlStatus, kAlStatusCode = ecat::reg::kAlStatusCode;
 constexpr std::size_t kMaxWatchedFaults = 64;
 
-std::uint16_t peek16(esc::Esc& e, std::uint16_t a) {
-  return static_cast<std::uint16_t>(e.peek(a) | (e.peek(static_cast<std::uint16_t>(a + 1)) << 8));
-}
-
 std::uint32_t sum_bytes(esc::Esc& e, std::uint16_t from, std::uint16_t to) {
   std::uint32_t s = 0;
   for (std::uint16_t a = from; a < to; ++a) s += e.peek(a);
@@ -61,7 +57,7 @@ Sampler::Sampler(network::Network& network, double rate_hz, SamplerSources sourc
       drives_.emplace_back();
       last_error_.push_back(0);
     }
-    last_al_.push_back(peek16(network_.esc(i), kAlStatus));
+    last_al_.push_back(network_.esc(i).peek_u16(kAlStatus));
   }
   last_faults_.reserve(kMaxWatchedFaults);
 }
@@ -105,7 +101,7 @@ void Sampler::sample(Nanos now) {
   for (std::size_t i = 0; i < network_.size(); ++i) {
     esc::Esc& e = network_.esc(i);
     const auto slave = static_cast<std::uint16_t>(i + 1);
-    const std::uint16_t al = peek16(e, kAlStatus), code = peek16(e, kAlStatusCode);
+    const std::uint16_t al = e.peek_u16(kAlStatus), code = e.peek_u16(kAlStatusCode);
     if (al != last_al_[i]) {
       char text[64];
       *fmt::format_to_n(text, sizeof text - 1, "AL status 0x{:02X} -> 0x{:02X}, status code 0x{:04X}", last_al_[i], al, code).out = '\0';

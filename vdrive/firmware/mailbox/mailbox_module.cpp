@@ -5,6 +5,7 @@
 
 #include "ethercat/coe.hpp"
 #include "ethercat/little_endian.hpp"
+#include "ethercat/sii.hpp"
 #include "vdrive/firmware/coe/coe_server.hpp"
 #include "vdrive/firmware/coe/parameter_store.hpp"
 #include "vdrive/firmware/pdi.hpp"
@@ -21,7 +22,6 @@ using ecat::mailbox::Type;
 
 namespace {
 constexpr std::uint32_t sm_event(int n) { return 1u << (al_event::kSmShift + n); }
-constexpr std::uint16_t kProtocolCoE = 0x0004;  // SII mailbox protocol bit2
 constexpr std::size_t kMinimumWindow = kHeaderSize + 16;  // header + an SDO frame with margin
 
 std::size_t larger(std::uint16_t a, const std::optional<std::uint16_t>& b) {
@@ -179,7 +179,7 @@ bool MailboxModule::receive_request(Nanos now) {
 void MailboxModule::dispatch(const Header& header, std::span<const std::uint8_t> payload,
                              Nanos now) {
   const bool coe = header.type == static_cast<std::uint8_t>(Type::CoE) &&
-                   (context_.profile.mailbox.protocols & kProtocolCoE) != 0;
+                   (context_.profile.mailbox.protocols & ecat::sii::mailbox_protocol::kCoE) != 0;
   // FoE only where the SII's FoE details advertise it: the A6B's protocol word has the FoE bit
   // but the product has no FoE (L656, L705), so the bit alone does not decide.
   const bool foe = header.type == static_cast<std::uint8_t>(Type::FoE) && foe_ != nullptr;
