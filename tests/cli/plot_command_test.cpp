@@ -8,7 +8,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -59,13 +58,6 @@ protected:
 fs::path* PlotCommand::dir_ = nullptr;
 bool PlotCommand::trace_ok_ = false;
 std::string PlotCommand::trace_log_;
-
-std::string read_all(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 TEST_F(PlotCommand, FourPanelsWithDataAtTheRequestedSize) {
   const ProcessResult r = vdrive({"plot", path("csp.csv"), "-o", path("csp.png"), "--size", "1000x800", "--title", "modes_csp"});
