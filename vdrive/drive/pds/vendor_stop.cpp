@@ -18,10 +18,6 @@ DriveSideAction xinje(std::int16_t v) {
   return DriveSideAction::FreeRun;  // 0, 1 (and anything else: the servo lets go)
 }
 
-}  // namespace
-
-namespace {
-
 // Index 0 names no object, so the handle reads the fallback.
 ObjectRef<std::int16_t> slot(od::ObjectStore& objects, const profile::ObjectSlot& s) {
   return ObjectRef<std::int16_t>(objects, s.index, s.subindex, s.fallback);
