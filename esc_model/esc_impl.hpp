@@ -12,7 +12,6 @@
 
 #include "common/clock.hpp"
 #include "esc_model/access_side.hpp"
-#include "esc_model/datagram.hpp"
 #include "esc_model/dc_unit.hpp"
 #include "esc_model/esc.hpp"
 #include "esc_model/esc_config.hpp"
@@ -20,6 +19,7 @@
 #include "esc_model/sii_eeprom.hpp"
 #include "esc_model/sync_manager.hpp"
 #include "esc_model/watchdog.hpp"
+#include "ethercat/datagram.hpp"
 #include "ethercat/little_endian.hpp"
 #include "ethercat/registers.hpp"
 
@@ -27,6 +27,18 @@ namespace vdrive::esc {
 
 // The chip's own sources name registers on nearly every line; the short name keeps them readable.
 namespace reg = ecat::reg;
+// The frame and datagram layout the engine walks (ethercat/datagram.hpp).
+using ecat::Command;
+using ecat::DatagramView;
+using ecat::dlpdu_datagrams;
+using ecat::EthercatHeader;
+using ecat::kDatagramHeaderSize;
+using ecat::kEthercatHeaderSize;
+using ecat::kFrameTypeDlpdu;
+using ecat::kMaxDatagramLength;
+using ecat::kWkcSize;
+using ecat::parse_ethercat_header;
+using ecat::validate_dlpdu;
 
 struct Esc::Impl final : PhysicalPort {
   Impl(const EscConfig& config, const Clock& clock);

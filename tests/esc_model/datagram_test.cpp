@@ -1,11 +1,13 @@
 // Datagram commands, addressing and working-counter rules; frame validation.
 #include <gtest/gtest.h>
 
-#include "esc_model/datagram.hpp"
+#include "ethercat/datagram.hpp"
 #include "tests/esc_model/esc_test_util.hpp"
 
 namespace vdrive::esc::test {
 namespace {
+
+using namespace vdrive::ecat;
 
 constexpr std::uint16_t kRam = 0x1000;
 

@@ -1,6 +1,6 @@
 #pragma once
 // Test helpers for the ESC: a frame builder (EtherCAT header + datagrams, built byte by byte
-// from the ETG.1000.4 layout, independently of esc_model/datagram.hpp), an SII image with a
+// from the ETG.1000.4 layout, independently of ethercat/datagram.hpp), an SII image with a
 // valid configuration area, and a fixture holding one ESC on a VirtualClock.
 #include <gtest/gtest.h>
 

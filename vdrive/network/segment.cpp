@@ -1,7 +1,7 @@
 // The line of slaves: frame path, per-hop timing, links. See segment.hpp.
 #include "vdrive/network/segment.hpp"
 
-#include "esc_model/datagram.hpp"
+#include "ethercat/datagram.hpp"
 
 namespace vdrive::network {
 namespace {
@@ -85,7 +85,7 @@ bool Segment::process(std::span<std::uint8_t> frame, Nanos rx_time) {
   const std::span<std::uint8_t> pdu = frame.subspan(payload);
   // A well-formed DLPDU frame is checked once for the whole line (Esc::process_checked_frame);
   // anything else goes through each ESC's own check, which destroys or passes it.
-  const std::size_t datagrams = esc::dlpdu_datagrams(pdu);
+  const std::size_t datagrams = ecat::dlpdu_datagrams(pdu);
   for (std::size_t i = 0; i <= turn; ++i) {
     esc::FrameTiming timing;
     timing.port0_rx = rx_time + static_cast<Nanos>(i) * hop_delay_;

@@ -13,7 +13,7 @@
 
 #include "ethercat/little_endian.hpp"
 
-namespace vdrive::esc {
+namespace vdrive::ecat {
 
 enum class Command : std::uint8_t {
   Nop = 0x00,
@@ -44,7 +44,17 @@ struct EthercatHeader {
   std::uint8_t type = 0;
 };
 
-EthercatHeader parse_ethercat_header(std::span<const std::uint8_t> pdu);
+inline constexpr std::uint16_t kHeaderLengthMask = 0x07FF;
+inline constexpr int kHeaderTypeShift = 12;
+
+inline EthercatHeader parse_ethercat_header(std::span<const std::uint8_t> pdu) {
+  EthercatHeader h;
+  if (pdu.size() < kEthercatHeaderSize) return h;
+  const std::uint16_t raw = get_le16(pdu, 0);
+  h.length = raw & kHeaderLengthMask;
+  h.type = static_cast<std::uint8_t>(raw >> kHeaderTypeShift);
+  return h;
+}
 
 class DatagramView {
 public:
@@ -56,7 +66,9 @@ public:
   // Position/configured addressing: ADP (low word) and ADO (high word); logical: all 32 bits.
   std::uint16_t adp() const { return le16(2); }
   std::uint16_t ado() const { return le16(4); }
-  std::uint32_t logical_address() const;
+  std::uint32_t logical_address() const {
+    return static_cast<std::uint32_t>(adp()) | (static_cast<std::uint32_t>(ado()) << 16);
+  }
   std::uint16_t length() const { return le16(6) & kMaxDatagramLength; }
   bool circulating() const { return (le16(6) & kCirculatingBit) != 0; }
   bool more() const { return (le16(6) & kMoreBit) != 0; }
@@ -65,7 +77,10 @@ public:
   std::uint16_t wkc() const { return le16(kDatagramHeaderSize + length()); }
 
   void set_adp(std::uint16_t v) { put16(2, v); }
-  void set_circulating(bool on);
+  void set_circulating(bool on) {
+    const std::uint16_t v = le16(6);
+    put16(6, on ? static_cast<std::uint16_t>(v | kCirculatingBit) : static_cast<std::uint16_t>(v & ~kCirculatingBit));
+  }
   void set_irq(std::uint16_t v) { put16(8, v); }
   void set_wkc(std::uint16_t v) { put16(kDatagramHeaderSize + length(), v); }
 
@@ -75,18 +90,39 @@ public:
   static constexpr std::uint16_t kMoreBit = 1u << 15;
 
 private:
-  std::uint16_t le16(std::size_t at) const { return ecat::get_le16(b_, at); }
-  void put16(std::size_t at, std::uint16_t v) { ecat::put_le16(b_, at, v); }
+  std::uint16_t le16(std::size_t at) const { return get_le16(b_, at); }
+  void put16(std::size_t at, std::uint16_t v) { put_le16(b_, at, v); }
   std::span<std::uint8_t> b_;
 };
 
 // Checks that the header length fits the PDU and every datagram (followed through the "more"
 // bit) lies inside the header length. Returns the number of datagrams, or 0 if malformed.
 // Only meaningful for type-1 frames.
-std::size_t validate_dlpdu(std::span<const std::uint8_t> pdu);
+inline std::size_t validate_dlpdu(std::span<const std::uint8_t> pdu) {
+  if (pdu.size() < kEthercatHeaderSize) return 0;
+  const EthercatHeader h = parse_ethercat_header(pdu);
+  // Bytes after the header length are Ethernet padding and are not looked at.
+  if (h.length > pdu.size() - kEthercatHeaderSize) return 0;
+  const std::size_t end = kEthercatHeaderSize + h.length;
+  std::size_t at = kEthercatHeaderSize;
+  std::size_t count = 0;
+  for (;;) {
+    if (end - at < kDatagramHeaderSize + kWkcSize) return 0;
+    const std::uint16_t len_field = get_le16(pdu, at + 6);
+    const std::size_t len = len_field & kMaxDatagramLength;
+    const std::size_t size = kDatagramHeaderSize + len + kWkcSize;
+    if (size > end - at) return 0;
+    ++count;
+    at += size;
+    if ((len_field & DatagramView::kMoreBit) == 0) return count;
+  }
+}
 
 // The datagrams of a well-formed DLPDU frame (type 1, validate_dlpdu); 0 for a frame too short
 // for the header, of another type, or malformed.
-std::size_t dlpdu_datagrams(std::span<const std::uint8_t> pdu);
+inline std::size_t dlpdu_datagrams(std::span<const std::uint8_t> pdu) {
+  if (pdu.size() < kEthercatHeaderSize || parse_ethercat_header(pdu).type != kFrameTypeDlpdu) return 0;
+  return validate_dlpdu(pdu);
+}
 
-}  // namespace vdrive::esc
+}  // namespace vdrive::ecat
