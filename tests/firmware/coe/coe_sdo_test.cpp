@@ -90,6 +90,20 @@ TEST_P(SdoOnProduct, AbortsFromTheObjectDictionary) {
       << "value too high";
 }
 
+// DS5C1 P0-27 (201Bh) and P0-29 (201Dh): chapter 5 documents the stop modes 0-5 (L2169-L2194) where
+// App. 1.1 lists "0、2" (L8677, L8680); every value chapter 5 describes is taken, 6 is too high.
+TEST(SdoDs5c1, StopModeParametersTakeTheSixModesOfChapter5) {
+  Bench b(load("ds5c1"));
+  b.to_preop();
+  for (const std::uint16_t index : {std::uint16_t{0x201B}, std::uint16_t{0x201D}}) {
+    for (std::uint64_t mode = 0; mode <= 5; ++mode) {
+      EXPECT_EQ(sdo_write(b, index, 0, le(mode, 2)).abort, 0u) << std::hex << index << " = " << mode;
+      EXPECT_EQ(sdo_read(b, index, 0).data, le(mode, 2)) << std::hex << index;
+    }
+    EXPECT_EQ(sdo_write(b, index, 0, le(6, 2)).abort, 0x06090031u) << std::hex << index << ": value too high";
+  }
+}
+
 TEST_P(SdoOnProduct, ProtocolAborts) {
   Bench b(load(GetParam()));
   b.to_preop();
