@@ -166,4 +166,4 @@ class DS5C1Counts(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    run("__main__")
+    run("__main__", needs_manuals=True)

@@ -58,4 +58,4 @@ class Regenerate(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    run("__main__")
+    run("__main__", needs_manuals=True)
