@@ -27,6 +27,12 @@ constexpr std::array<std::pair<std::string_view, IoRuleSet>, 4> kIoRuleSets{{
 constexpr std::array<std::pair<std::string_view, SoftLimitStop>, 2> kSoftLimitStops{{
     {"at_limit", SoftLimitStop::AtLimit}, {"ramp", SoftLimitStop::Ramp}}};
 
+// A key naming a vendor alarm must name one of alarms.yaml ("" = none).
+void require_alarm(const ProductProfile& p, const std::string& file, const std::string& key, const std::string& code) {
+  if (!code.empty() && p.find_alarm(code) == nullptr)
+    throw ProfileError(file + ": " + key + ": '" + code + "' is not an alarm of alarms.yaml");
+}
+
 // {index: 0x3100, subindex: 0, scale: 0.1, fallback: 20.0}; a product without the parameter writes
 // {index: 0, fallback: ...} (no subindex or scale: there is nothing to scale).
 ParameterRef read_parameter(YamlMapReader& parent, std::string_view key) {
@@ -205,11 +211,9 @@ void check_drive_alarms(const ProductProfile& p, const std::string& file) {
       {"main_power_off", &a.main_power_off},
       {"abort_connection", &a.abort_connection},
   };
-  for (const auto& [name, code] : causes)
-    if (!code->empty() && p.find_alarm(*code) == nullptr)
-      throw ProfileError(file + ": drive.alarms." + std::string(name) + ": '" + *code +
-                         "' is not an alarm of alarms.yaml");
-  check_rule_alarms(p, file);
+  for (const auto& [name, code] : causes) require_alarm(p, file, "drive.alarms." + std::string(name), *code);
+  require_alarm(p, file, "drive.alarm_rules.delayed_clear.code", p.drive.alarm_rules.delayed_clear_code);
+  require_alarm(p, file, "homing.cancel_after_detection_alarm", p.homing.cancel_after_detection_alarm);
 }
 
 }  // namespace vdrive::profile

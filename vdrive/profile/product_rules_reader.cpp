@@ -110,14 +110,4 @@ void read_homing_rules(YamlMapReader& m, HomingSpec& h) {
   h.cancel_after_detection_alarm = m.string("cancel_after_detection_alarm", 16);
 }
 
-void check_rule_alarms(const ProductProfile& p, const std::string& file) {
-  const std::pair<std::string_view, const std::string*> named[] = {
-      {"drive.alarm_rules.delayed_clear.code", &p.drive.alarm_rules.delayed_clear_code},
-      {"homing.cancel_after_detection_alarm", &p.homing.cancel_after_detection_alarm},
-  };
-  for (const auto& [key, code] : named)
-    if (!code->empty() && p.find_alarm(*code) == nullptr)
-      throw ProfileError(file + ": " + std::string(key) + ": '" + *code + "' is not an alarm of alarms.yaml");
-}
-
 }  // namespace vdrive::profile

@@ -34,10 +34,9 @@ void check_consistency(const ProductProfile& p, const YamlMapReader& root);
 // (the file's `product:` must name it).
 std::vector<AlarmSpec> parse_alarms(std::string_view id, const std::string& text, const std::string& file);
 std::vector<MotorSpec> parse_motors(std::string_view id, const std::string& text, const std::string& file);
-// drive.alarms names only alarms of alarms.yaml (checked once both are read); `file` is profile.yaml.
+// drive.alarms, drive.alarm_rules and homing name only alarms of alarms.yaml (checked once both are
+// read); `file` is profile.yaml.
 void check_drive_alarms(const ProductProfile& p, const std::string& file);
-// The alarms the rules name (delayed clear, cancelled homing) are alarms of alarms.yaml.
-void check_rule_alarms(const ProductProfile& p, const std::string& file);
 
 // Parses `text` as YAML; a syntax error becomes a ProfileError naming file and line.
 YAML::Node load_yaml(const std::string& text, const std::string& file);

@@ -9,7 +9,7 @@ namespace vdrive::drive {
 using profile::AlarmSpec;
 
 AlarmManager::AlarmManager(const DriveContext& ctx, EmergencySink sink)
-    : ctx_(ctx), sink_(std::move(sink)), rules_(alarm_rules_for(ctx.profile)),
+    : ctx_(ctx), sink_(std::move(sink)), rules_(ctx.profile.drive.alarm_rules),
       history_(make_alarm_history(rules_.history, ctx.objects)), error_code_(ctx.objects, 0x603F),
       error_register_ref_(ctx.objects, 0x1001), states_(ctx.profile.alarms.size()) {}
 
@@ -96,7 +96,7 @@ AlarmManager::Block AlarmManager::blocked(bool al_error_pending, bool fault_reac
     if (s.cause) return Block::Other;                                   // L34048-L34050
     if (al_error_pending && table[i].al_status_code != 0) return Block::Other;   // L34013-L34017
     if (!rules_.delayed_clear_code.empty() && table[i].code == rules_.delayed_clear_code &&
-        now - s.since < rules_.delayed_clear_after)
+        now - s.since < static_cast<Nanos>(rules_.delayed_clear_after_ms) * 1'000'000)
       too_young = true;                                                 // L32918-L32920
   }
   return too_young ? Block::TooYoung : Block::None;

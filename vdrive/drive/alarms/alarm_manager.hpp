@@ -75,7 +75,7 @@ public:
   // DS5C1 panel F0-00 / SDO 4000h = 1 (L7400-L7412). True if no alarm is left.
   bool clear_from_drive(bool fault_reaction_active, Nanos now);
 
-  const AlarmRules& rules() const { return rules_; }
+  const profile::AlarmRulesSpec& rules() const { return rules_; }
   const AlarmHistory* history() const { return history_.get(); }   // nullptr: the product keeps none
 
 private:
@@ -98,7 +98,7 @@ private:
 
   const DriveContext& ctx_;
   EmergencySink sink_;
-  AlarmRules rules_;
+  const profile::AlarmRulesSpec& rules_;  // the product's drive.alarm_rules
   std::shared_ptr<AlarmHistory> history_;
   ObjectRef<std::uint16_t> error_code_, error_register_ref_;
   std::vector<State> states_;          // one per profile.alarms entry

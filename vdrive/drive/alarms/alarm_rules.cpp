@@ -2,18 +2,6 @@
 
 namespace vdrive::drive {
 
-AlarmRules alarm_rules_for(const profile::ProductProfile& profile) {
-  const profile::AlarmRulesSpec& spec = profile.drive.alarm_rules;
-  AlarmRules r;
-  r.error_register = spec.error_register;
-  r.emergency_sub_code = spec.emergency_sub_code;
-  r.emergency_gated_by_10f3 = spec.emergency_gated_by_10f3;
-  r.history = spec.history;
-  r.delayed_clear_code = spec.delayed_clear_code;
-  r.delayed_clear_after = static_cast<Nanos>(spec.delayed_clear_after_ms) * 1'000'000;
-  return r;
-}
-
 bool is_communication_alarm(const profile::AlarmSpec& alarm) {
   const AlarmCode code = parse_alarm_code(alarm.code);
   switch (code.style) {

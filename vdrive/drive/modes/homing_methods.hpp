@@ -4,7 +4,7 @@
 // first index pulse after that edge, and which way to start when the switch state does not say.
 // Sources: A6B L17785-L17890 (table), L18740-L19346 (method texts); DS5C1 L3272-L3321,
 // L3570-L3673; DS1000A-EC L2766-L2956. The vendor methods (< 0) differ per product and are
-// described by HomingRules (homing_rules.hpp).
+// listed in the product's homing section (homing_rules.hpp).
 //
 // Geometry words used below: a switch is "active below" its edge (negative limit, the negative home
 // switch of 5/6), "active above" it (positive limit, positive home switch of 3/4) or a window with a

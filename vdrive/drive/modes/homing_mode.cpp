@@ -27,7 +27,7 @@ int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
 }  // namespace
 
 HomingMode::HomingMode(const DriveContext& ctx)
-    : ctx_(ctx), rules_(homing_rules_for(ctx.profile)), method_(ctx.objects, 0x6098),
+    : ctx_(ctx), rules_(ctx.profile.homing), method_(ctx.objects, 0x6098),
       speed_switch_(ctx.objects, 0x6099, 1), speed_zero_(ctx.objects, 0x6099, 2),
       acceleration_(ctx.objects, 0x609A), max_motor_speed_(ctx.objects, 0x6080),
       quick_stop_dec_(ctx.objects, 0x6085), home_offset_(ctx.objects, 0x607C),
@@ -170,7 +170,7 @@ bool HomingMode::start_error(const AxisSample& s, bool enabled) const {
 void HomingMode::start(const AxisSample& s, bool enabled) {
   const std::int8_t m = method_.get();
   spec_ = find_standard_homing_method(m);
-  hard_ = spec_ ? nullptr : rules_.hard_stop(m);
+  hard_ = spec_ ? nullptr : find_hard_stop(rules_, m);
   double vmax = kMaxSpeed;
   if (max_motor_speed_.present() && max_motor_speed_.get() > 0)
     vmax = std::min(vmax, ctx_.units.rpm_to_user(static_cast<double>(max_motor_speed_.get())));
@@ -203,7 +203,7 @@ void HomingMode::start(const AxisSample& s, bool enabled) {
     return;
   }
   if (hard_ != nullptr) {
-    const bool xinje = rules_.vendor == HomingRules::Vendor::XinjeHardStop;
+    const bool xinje = rules_.vendor_methods == profile::HomingVendorMethods::XinjeHardStop;
     if (xinje) {
       push_limit_ = 10.0 * static_cast<double>(std::max(0, stop_torque_pct_.get()));  // % -> 0.1 %
     } else {  // the torque limit in force in the push direction, at most 100 % (L3874-L3878)
@@ -431,7 +431,7 @@ Setpoint HomingMode::step_push(const AxisSample& s) {
   const Setpoint sp = run(s, leg_.direction * leg_.speed, push_limit_);
   bool pressing = std::abs(s.torque) >= push_limit_ * 0.98;
   Nanos hold_for = ms(torque_detect_ms_.get());  // DS1000A-EC 2142h
-  if (rules_.vendor == HomingRules::Vendor::XinjeHardStop) {
+  if (rules_.vendor_methods == profile::HomingVendorMethods::XinjeHardStop) {
     // |torque| at P9-17 and |speed| below P9-16 for P9-18 ms (L3551).
     const double still = ctx_.units.rpm_to_user(static_cast<double>(std::max(0, stop_speed_rpm_.get())));
     pressing = pressing && std::abs(s.velocity) < still;
@@ -445,7 +445,7 @@ Setpoint HomingMode::step_push(const AxisSample& s) {
 void HomingMode::after_push(const AxisSample& s, double stop_position) {
   cmd_ = {stop_position, 0.0};  // unload the stop: the command returns to where the axis stands
   const int back = -hard_->direction;
-  if (rules_.vendor == HomingRules::Vendor::TorqueLimit) {
+  if (rules_.vendor_methods == profile::HomingVendorMethods::TorqueLimit) {
     if (!hard_->index_after) {
       found(s, stop_position);
       return;

@@ -111,7 +111,7 @@ private:
   void finish_pulse(const AxisSample& s);
 
   const DriveContext& ctx_;
-  HomingRules rules_;
+  const profile::HomingSpec& rules_;  // the product's homing section: vendor methods and rules
   ObjectRef<std::int8_t> method_;
   ObjectRef<std::uint32_t> speed_switch_, speed_zero_, acceleration_, max_motor_speed_, quick_stop_dec_;
   ObjectRef<std::int32_t> home_offset_;
