@@ -252,6 +252,12 @@ std::string export_esi(const ProductProfile& p, const od::Dictionary& d, const E
   xml.open("Name");
   xml.attr("LcId", kLcIdEnglish);
   xml.close_with_text(id.device_name);
+  // Explicit Device ID (SII General flags bit 5): the ESI says so with IdentificationReg134.
+  if (p.explicit_device_id) {
+    xml.open("Info");
+    xml.element("IdentificationReg134", "true");
+    xml.close();
+  }
   xml.element("GroupType", id.group);
 
   // 1000h: low word = device profile number (402 for drives), high word = additional information.

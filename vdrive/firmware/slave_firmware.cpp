@@ -29,9 +29,9 @@ constexpr std::uint32_t kEsmEvents = al_event::kAlControl | al_event::kSmActivat
 }  // namespace
 
 struct SlaveFirmware::Impl final : TransitionHooks {
-  Impl(const profile::ProductProfile& p, esc::Esc& e, const std::string& profile_dir)
+  Impl(const profile::ProductProfile& p, esc::Esc& e, const FirmwareOptions& options)
       : profile(p),
-        dictionary(od::shared_dictionary(p, profile_dir)),
+        dictionary(options.dictionary ? options.dictionary : od::shared_dictionary(p, options.profile_dir)),
         objects(*dictionary),
         rules(p.mailbox_rules),
         codes(p.al_codes),
@@ -206,7 +206,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
 };
 
 SlaveFirmware::SlaveFirmware(const profile::ProductProfile& profile, esc::Esc& esc, const FirmwareOptions& options)
-    : impl_(std::make_unique<Impl>(profile, esc, options.profile_dir)) {
+    : impl_(std::make_unique<Impl>(profile, esc, options)) {
   impl_->install_modules(options);
 }
 

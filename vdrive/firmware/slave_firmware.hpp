@@ -2,9 +2,9 @@
 // The firmware of one slave: what the drive's microcontroller runs. It talks to its ESC only
 // through the PDI (pdi_read/pdi_write/pdi_irq), like the real thing.
 //
-// This issue: the EtherCAT state machine (AL control -> AL status / status code) with the
-// product's mailbox SyncManager checks (docs/state-machine.md). Later issues add mailbox/CoE,
-// PDO, CiA402.
+// The EtherCAT state machine (AL control -> AL status / status code) with the product's mailbox
+// SyncManager checks (docs/state-machine.md), and the modules it runs: mailbox (CoE, FoE), process
+// data, synchronisation and, for a product with drive modes, the CiA 402 drive.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -17,7 +17,7 @@
 namespace vdrive::drive { class DriveEngine; }
 namespace vdrive::plant { class Plant; }
 namespace vdrive::firmware::mailbox { class MailboxModule; }
-namespace vdrive::od { class ObjectStore; }
+namespace vdrive::od { class Dictionary; class ObjectStore; }
 
 namespace vdrive::firmware {
 
@@ -27,6 +27,9 @@ struct FirmwareOptions {
   // Where the profile was loaded from: its objects.yaml is looked for there first (a product that
   // exists only as files has no built-in dictionary). Empty: the built-in dictionaries.
   std::string profile_dir;
+  // The object dictionary, when it does not come from the profile's objects.yaml (a device imported
+  // from its ESI file). Empty: od::shared_dictionary(profile, profile_dir).
+  std::shared_ptr<const od::Dictionary> dictionary;
 };
 
 class SlaveFirmware {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "vdrive/esi/esi_import.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/profile/sii_image.hpp"
 
@@ -14,13 +15,23 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
   slaves_.reserve(product_ids.size());
   for (const std::string& id : product_ids) {
     auto slave = std::make_unique<Slave>();
-    slave->profile = profile::load_profile(id, options.profile_dir);
-    slave->esc = std::make_unique<esc::Esc>(profile::make_esc_config(slave->profile), clock);
+    firmware::FirmwareOptions firmware_options;
+    esc::EscConfig esc_config;
+    if (esi::is_esi_reference(id)) {
+      const std::shared_ptr<const esi::ImportedDevice> device = esi::load_esi_device(id);
+      slave->profile = device->profile;
+      esc_config = profile::make_esc_config(slave->profile);
+      esc_config.sii_image = device->sii_image;
+      firmware_options.dictionary = device->dictionary;
+    } else {
+      slave->profile = profile::load_profile(id, options.profile_dir);
+      esc_config = profile::make_esc_config(slave->profile);
+    }
+    slave->esc = std::make_unique<esc::Esc>(esc_config, clock);
     if (slaves_.size() < options.dc_models.size()) {
       const DcModel& dc = options.dc_models[slaves_.size()];
       slave->esc->set_dc_model(dc.drift_ppm, dc.start_offset);
     }
-    firmware::FirmwareOptions firmware_options;
     firmware_options.profile_dir = options.profile_dir;
     if (slaves_.size() < options.plants.size()) firmware_options.plant = options.plants[slaves_.size()];
     slave->firmware = std::make_unique<firmware::SlaveFirmware>(slave->profile, *slave->esc, firmware_options);

@@ -1,7 +1,9 @@
 #pragma once
-// Network: the slaves of one line, as the event loop drives them. For each product (cable order)
-// it loads the profile, builds the ESC from it (identity registers, SII image) and the slave
-// firmware, and strings the ESCs into a Segment; all are powered on at construction.
+// Network: the slaves of one line, as the event loop drives them. For each slave (cable order) it
+// loads the product, a built-in or --profile-dir product id ("a6b") or a device of an ESI file
+// ("EL1008.xml", "devices.xml:0x3F03052:0x110000", esi/esi_import.hpp), builds the ESC from it
+// (identity registers, SII image) and the slave firmware, and strings the ESCs into a Segment;
+// all are powered on at construction.
 //
 // Per frame: the segment processes it in place, then the firmware of every slave whose PDI IRQ
 // is asserted is serviced (as a microcontroller's IRQ handler would run right after the frame).
@@ -39,7 +41,8 @@ struct NetworkOptions {
 
 class Network {
 public:
-  // Throws profile::ProfileError for an unknown product or a broken profile. `clock` must
+  // Throws profile::ProfileError for an unknown product or a broken profile (esi::EsiError, one,
+  // for a broken or ambiguous ESI file). `clock` must
   // outlive the network (the ESCs read it).
   Network(std::span<const std::string> product_ids, const Clock& clock,
           const NetworkOptions& options = {});

@@ -63,19 +63,24 @@ Source find_objects_yaml(const std::string& id, const std::string& profile_dir) 
 }  // namespace
 
 Dictionary Dictionary::load(const profile::ProductProfile& profile, const std::string& profile_dir) {
-  Dictionary d;
   const Source source = find_objects_yaml(profile.id, profile_dir);
-  if (!source.text.empty()) {
-    ObjectsYaml parsed = parse_objects_yaml(source.text, source.file);
-    if (parsed.product != profile.id)
-      throw profile::ProfileError(source.file + ": product: '" + parsed.product + "', expected '" +
-                                  profile.id + "'");
-    d.objects_ = std::move(parsed.objects);
-  }
   // A product without objects.yaml still answers its identity (a profile under test, a new product).
+  if (source.text.empty()) return from_objects({}, profile, /*complete_pdo_objects=*/false);
+  ObjectsYaml parsed = parse_objects_yaml(source.text, source.file);
+  if (parsed.product != profile.id)
+    throw profile::ProfileError(source.file + ": product: '" + parsed.product + "', expected '" +
+                                profile.id + "'");
+  return from_objects(std::move(parsed.objects), profile);
+}
+
+Dictionary Dictionary::from_objects(std::vector<ObjectDesc> objects, const profile::ProductProfile& profile,
+                                    bool complete_pdo_objects) {
+  Dictionary d;
+  d.objects_ = std::move(objects);
+  std::sort(d.objects_.begin(), d.objects_.end(),
+            [](const ObjectDesc& a, const ObjectDesc& b) { return a.index < b.index; });
   apply_identity(d.objects_, profile.identity);
-  // Without objects.yaml there are no PDO objects to fill.
-  if (!source.text.empty()) apply_default_pdo_configuration(d.objects_, profile);
+  if (complete_pdo_objects) apply_default_pdo_configuration(d.objects_, profile);
 
   // One flat value array: each entry's bytes at its offset, in index/subindex order.
   std::uint32_t offset = 0;

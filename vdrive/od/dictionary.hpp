@@ -1,8 +1,8 @@
 #pragma once
 // A product's object dictionary as a description: what objects and entries exist, their types,
 // access, PDO mappability, defaults and limits. Immutable and shared by every slave of a product.
-// Built from profiles/<id>/objects.yaml (embedded in the binary) plus the identity in the
-// ProductProfile (1000h, 1008h-100Ah, 1018h values come from the profile).
+// Built from profiles/<id>/objects.yaml (embedded in the binary), or from an ESI file's dictionary,
+// plus the identity in the ProductProfile (1000h, 1008h-100Ah, 1018h values come from the profile).
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -55,6 +55,11 @@ public:
   // Loads the embedded objects.yaml of `profile.id` (or `<profile_dir>/<id>/objects.yaml`).
   // Throws profile::ProfileError naming the file, line and field on bad data.
   static Dictionary load(const profile::ProductProfile& profile, const std::string& profile_dir = {});
+  // A dictionary of objects described elsewhere (an ESI file), completed as load() completes
+  // objects.yaml: identity objects from the profile, and (with complete_pdo_objects) the PDO
+  // objects the table leaves empty from the profile's default PDOs. Entries need value_bytes set.
+  static Dictionary from_objects(std::vector<ObjectDesc> objects, const profile::ProductProfile& profile,
+                                 bool complete_pdo_objects = true);
 
   const ObjectDesc* find(std::uint16_t index) const;                          // O(log n)
   const EntryDesc* find(std::uint16_t index, std::uint8_t subindex) const;

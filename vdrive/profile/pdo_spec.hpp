@@ -30,6 +30,8 @@ struct PdoObjectRule {
   std::uint16_t index = 0;
   bool fixed = false;                                 // contents cannot be changed (1600h.. writes refused)
   std::uint8_t max_entries = 0;                       // subindexes 01h..max_entries exist
+  bool mandatory = false;                             // must stay assigned (ESI RxPdo/TxPdo@Mandatory)
+  std::vector<std::uint16_t> excludes;                // never assigned together with these (ESI <Exclude>)
 };
 
 // A set of ESM states: the bit is the AL state code for Init (1), PreOp (2), SafeOp (4), Op (8), so
