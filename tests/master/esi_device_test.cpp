@@ -1,0 +1,58 @@
+// A drive that exists only as an ESI file (tests/products/esi/generic_servo.xml, written by hand in
+// a configurator's style) is served with the generic CiA 402 personality: the project master scans
+// it beside built-in products, takes the line to Op with DC at 1 ms and it follows a csp sine.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "master/master.hpp"
+#include "master/op_run.hpp"
+#include "tests/master/csp_sine_run.hpp"
+#include "tests/master/virtual_line.hpp"
+
+namespace vdrive::master {
+namespace {
+
+const std::string kServo = std::string(VDRIVE_TEST_PRODUCTS_DIR) + "/esi/generic_servo.xml";
+
+TEST(EsiDevice, ScansWithTheIdentityAndPdosOfItsFile) {
+  test::VirtualLine line({"a6b", kServo + ":0x402:0x10000", "ds5c1"});
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 3u);
+  const SlaveInfo& s = master.slaves()[1].info;
+  EXPECT_EQ(s.vendor_id, 0x00FFFF01u);
+  EXPECT_EQ(s.product_code, 0x00000402u);
+  EXPECT_EQ(s.revision, 0x00010000u);
+  EXPECT_EQ(s.name, "Generic Servo 402");
+  EXPECT_TRUE(s.mailbox_protocols & mailbox_protocol::kCoE);
+  master.set_mailbox_timeout(20'000'000);
+  ASSERT_TRUE(master.request_state(AlState::PreOp));
+  EXPECT_EQ(master.sdo(1).upload_value<std::uint32_t>(0x1000, 0), 0x00020192u);
+  EXPECT_EQ(master.sdo(1).upload_value<std::uint16_t>(0x1C12, 1), 0x1600u);
+  EXPECT_EQ(master.sdo(1).upload_value<std::uint32_t>(0x6080, 0), 6000u);
+}
+
+TEST(EsiDevice, MasterTakesItToOpAndItFollowsInCsp) {
+  test::VirtualLine line({kServo});
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 1u);
+  master.set_mailbox_timeout(20'000'000);
+
+  const test::CspSineRun run = test::run_csp_sine_at_1ms(master, 1'000'000'000);
+  const OpRunResult& result = run.result;
+  ASSERT_TRUE(result.reached_op) << result.error << " AL status code 0x" << std::hex
+                                 << (line.network().esc(0).peek(0x0134) | line.network().esc(0).peek(0x0135) << 8);
+  EXPECT_EQ(result.stats.wrong_wkc, 0u);
+  EXPECT_EQ(result.left_op, 0u);
+  ASSERT_EQ(run.drives.size(), 1u);
+  const DriveResult& r = run.drives[0];
+  EXPECT_TRUE(r.enabled) << describe(r);
+  EXPECT_FALSE(r.faulted) << describe(r);
+  EXPECT_EQ(r.statusword & 0x006F, 0x0027) << describe(r);  // Operation enabled
+  EXPECT_GE(r.samples, 900u) << describe(r);
+  EXPECT_GT(r.max_following_error, 0) << describe(r) << ": a moving axis lags a little";
+  EXPECT_LE(r.max_following_error, r.following_window) << describe(r);
+}
+
+}  // namespace
+}  // namespace vdrive::master
