@@ -28,6 +28,7 @@
 #include "plant/plant.hpp"
 #include "plant/plant_yaml.hpp"
 #include "vdrive/network/network.hpp"
+#include "vdrive/esi/esi_import.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/runtime/loop_waker.hpp"
@@ -133,10 +134,18 @@ std::vector<std::optional<plant::PlantDescription>> load_plants(const RunOptions
 void check_products(const RunOptions& o) {
   const std::vector<std::string> known = profile::known_products();
   for (const std::string& id : o.drives) {
+    if (esi::is_esi_reference(id)) {
+      try {
+        (void)esi::load_esi_device(id);  // read once here, so a broken file is the user's error
+      } catch (const profile::ProfileError& e) {
+        throw CliError(kExitBadArguments, fmt::format("--drive: {}", e.what()));
+      }
+      continue;
+    }
     if (std::find(known.begin(), known.end(), id) == known.end() && o.profile_dir.empty()) {
       throw CliError(kExitBadArguments,
-                     fmt::format("--drive: unknown product '{}' (known: {})", id,
-                                 known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
+                     fmt::format("--drive: unknown product '{}' (known: {}; or an ESI device, FILE.xml[:PRODUCT[:REVISION]])",
+                                 id, known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
     }
   }
 }
@@ -260,7 +269,8 @@ void add_run_command(CLI::App& app) {
       cmd->add_option("--iface,-i", o->iface, "Interface the master is cabled to (raw socket)");
   CLI::Option* tap = cmd->add_option("--tap", o->tap, "Create/attach TAP device NAME and serve on it");
   iface->excludes(tap);
-  cmd->add_option("--drive,-d", o->drives, "Product id of the next drive in cable order (repeat)")
+  cmd->add_option("--drive,-d", o->drives,
+                  "Product id of the next drive in cable order, or an ESI device FILE.xml[:PRODUCT[:REVISION]] (repeat)")
       ->required()
       ->take_all();
   cmd->add_option("--plant", o->plants,

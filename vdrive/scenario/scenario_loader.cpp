@@ -15,6 +15,7 @@
 #include "plant/plant_yaml.hpp"
 #include "vdrive/drive/product_plant.hpp"
 #include "vdrive/fault/fault_fields.hpp"
+#include "vdrive/esi/esi_import.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/scenario/time_value.hpp"
 
@@ -417,7 +418,7 @@ Expectation expectation_of(Map& m, const Context& c, std::size_t i) {
 
 const profile::ProductProfile* lookup(std::deque<profile::ProductProfile>& keep, std::string_view id) {
   try {
-    keep.push_back(profile::load_profile(id));
+    keep.push_back(esi::is_esi_reference(id) ? esi::load_esi_device(id)->profile : profile::load_profile(id));
     return &keep.back();
   } catch (const profile::ProfileError&) {
     return nullptr;
@@ -462,6 +463,15 @@ Scenario parse_scenario(std::string_view text, const std::string& file) {
     SlaveSpec sl;
     sl.line = m.line();
     sl.product = m.string("product");
+    // An ESI device's file is found beside the scenario, as its plant files are.
+    if (esi::is_esi_reference(sl.product) && !fs::path(sl.product).is_absolute()) sl.product = (base / sl.product).string();
+    if (esi::is_esi_reference(sl.product)) {
+      try {
+        (void)esi::load_esi_device(sl.product);
+      } catch (const profile::ProfileError& e) {
+        m.fail("product", e.what());
+      }
+    }
     if (!lookup(products, sl.product)) {
       std::string known;
       for (const std::string& id : profile::known_products()) known += (known.empty() ? "" : ", ") + id;

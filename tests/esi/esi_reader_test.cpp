@@ -1,0 +1,189 @@
+// Reading ESI files: the hand-written generic servo (tests/products/esi/generic_servo.xml) comes in
+// with its ETG arrays, access restrictions, HexDec values, PDO rules and DC op modes; broken files
+// and ambiguous device names get errors naming the file, the line and the element.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "vdrive/esi/esi_error.hpp"
+#include "vdrive/esi/esi_import.hpp"
+#include "vdrive/esi/esi_reader.hpp"
+
+namespace {
+
+using namespace vdrive;
+
+const std::string kServo = std::string(VDRIVE_TEST_PRODUCTS_DIR) + "/esi/generic_servo.xml";
+
+// The message of the EsiError `f` throws ("" when it throws none).
+template <typename F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const esi::EsiError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+std::string device_xml(const std::string& body, const std::string& type = R"(<Type ProductCode="#x1" RevisionNo="#x2">T1</Type>)") {
+  return "<?xml version=\"1.0\"?>\n<EtherCATInfo>\n<Vendor><Id>#x99</Id><Name>V</Name></Vendor>\n<Descriptions>\n"
+         "<Devices>\n<Device Physics=\"YY\">\n" + type + "\n<Name>N</Name>\n" + body +
+         "\n</Device>\n</Devices>\n</Descriptions>\n</EtherCATInfo>\n";
+}
+
+TEST(EsiReader, ReadsTheGenericServo) {
+  const std::vector<esi::EsiDevice> devices = esi::read_esi_file(kServo);
+  ASSERT_EQ(devices.size(), 1u);
+  const esi::EsiDevice& d = devices[0];
+  EXPECT_EQ(d.vendor_id, 0x00FFFF01u);
+  EXPECT_EQ(d.product_code, 0x402u);
+  EXPECT_EQ(d.type_text, "GS402");
+  EXPECT_EQ(d.name, "Generic Servo 402");
+  EXPECT_EQ(d.profile_no, 402u);
+  ASSERT_EQ(d.sync_managers.size(), 4u);
+  EXPECT_EQ(d.sync_managers[2].start, 0x1100);
+  EXPECT_EQ(d.sync_managers[2].control, 0x64);
+  ASSERT_EQ(d.rx_pdos.size(), 2u);
+  EXPECT_EQ(d.rx_pdos[0].exclude, std::vector<std::uint16_t>{0x1601});
+  EXPECT_TRUE(d.rx_pdos[1].fixed);
+  EXPECT_FALSE(d.rx_pdos[1].sm.has_value());
+  EXPECT_TRUE(d.tx_pdos[0].mandatory);
+  ASSERT_EQ(d.op_modes.size(), 2u);
+  EXPECT_EQ(d.op_modes[1].assign_activate, 0x0300);
+  EXPECT_EQ(d.op_modes[1].cycle_time_sync0_factor, 1);
+}
+
+TEST(EsiReader, EtgArraysExpandIntoTheirElements) {
+  const esi::EsiDevice d = esi::read_esi_file(kServo).at(0);
+  const auto it = std::find_if(d.objects.begin(), d.objects.end(), [](const od::ObjectDesc& o) { return o.index == 0x1C12; });
+  ASSERT_NE(it, d.objects.end());
+  EXPECT_EQ(it->code, od::ObjectCode::Array);
+  ASSERT_EQ(it->entries.size(), 3u);
+  EXPECT_EQ(it->entries[2].subindex, 2);
+  EXPECT_EQ(it->entries[2].type, od::DataType::Unsigned16);
+  EXPECT_EQ(it->entries[1].default_value, (std::vector<std::uint8_t>{0x00, 0x16}));
+  // rw with WriteRestrictions="PreOP": readable always, writable in PreOp only.
+  EXPECT_EQ(it->entries[1].access, od::access::kReadAll | od::access::kWritePreOp);
+}
+
+TEST(EsiReader, ValuesComeFromDataAndHexDecForms) {
+  const esi::EsiDevice d = esi::read_esi_file(kServo).at(0);
+  auto entry = [&](std::uint16_t index, std::uint8_t sub) -> const od::EntryDesc& {
+    for (const od::ObjectDesc& o : d.objects)
+      if (o.index == index)
+        if (const od::EntryDesc* e = o.entry(sub)) return *e;
+    throw std::runtime_error("no entry");
+  };
+  EXPECT_EQ(entry(0x6080, 0).min, 0);
+  EXPECT_EQ(entry(0x6080, 0).max, 10000);
+  EXPECT_EQ(entry(0x6080, 0).default_value, (std::vector<std::uint8_t>{0x70, 0x17, 0, 0}));  // 6000
+  EXPECT_EQ(entry(0x1C32, 5).default_value, (std::vector<std::uint8_t>{0x48, 0xE8, 0x01, 0}));  // #x0001E848
+  EXPECT_EQ(entry(0x6098, 0).min, 1);
+  EXPECT_EQ(entry(0x1008, 0).type, od::DataType::VisibleString);
+  EXPECT_EQ(entry(0x6041, 0).access, od::access::kReadAll | od::access::kTxPdoMappable);
+  EXPECT_EQ(entry(0x1C32, 0x20).type, od::DataType::Boolean);
+}
+
+TEST(EsiReader, ImportMakesTheProfileFromTheFile) {
+  const esi::ImportedDevice imported = esi::import_device(esi::read_esi_file(kServo).at(0));
+  const profile::ProductProfile& p = imported.profile;
+  EXPECT_EQ(p.esc.port_descriptor, 0x0F);
+  EXPECT_EQ(p.esc.pdi_control, 0x0C05);
+  EXPECT_EQ(p.mailbox_rules.sm0_min_length, 34);
+  EXPECT_EQ(p.mailbox_rules.sm0_max_length, 128);
+  EXPECT_EQ(p.coe_details, 0x2F);  // SDO, SDO info, PDO assign, PDO config, complete access
+  EXPECT_TRUE(p.sync.dc_sync0);
+  EXPECT_FALSE(p.sync.dc_sync1);
+  EXPECT_EQ(p.sync.accepted_dc_activation, (std::vector<std::uint8_t>{0x00, 0x03}));
+  EXPECT_EQ(p.sync.cycle_min_ns, 125000u);
+  EXPECT_TRUE(p.sync.accepts_cycle(1'000'000));
+  EXPECT_FALSE(p.sync.accepts_cycle(100'000));
+  ASSERT_EQ(p.rx_pdos.size(), 1u);
+  EXPECT_EQ(p.rx_pdos[0].index, 0x1600);
+  ASSERT_EQ(p.pdo_rules.rx_objects.size(), 2u);
+  EXPECT_EQ(p.pdo_rules.rx_objects[0].max_entries, 8);
+  EXPECT_EQ(p.pdo_rules.rx_objects[0].excludes, std::vector<std::uint16_t>{0x1601});
+  EXPECT_TRUE(p.pdo_rules.tx_objects[0].mandatory);
+  EXPECT_EQ(p.pdo_rules.max_rx_assigned, 2);
+  EXPECT_EQ(p.modes.supported_drive_modes, 0x3A5u);
+  EXPECT_EQ(p.modes.default_mode, 8);
+  EXPECT_EQ(p.homing.default_method, 35);
+  EXPECT_EQ(imported.sii_image.size(), 2048u);
+  EXPECT_EQ(imported.dictionary->find(0x1018, 2)->default_value, (std::vector<std::uint8_t>{0x02, 0x04, 0, 0}));
+}
+
+TEST(EsiReader, MalformedXmlNamesTheLine) {
+  const std::string e = error_of([] { esi::parse_esi("<?xml version=\"1.0\"?>\n<EtherCATInfo>\n<Vendor>\n</EtherCATInfo>", "bad.xml"); });
+  EXPECT_NE(e.find("bad.xml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("not well-formed"), std::string::npos) << e;
+}
+
+TEST(EsiReader, ANonEsiDocumentIsRefused) {
+  const std::string e = error_of([] { esi::parse_esi("<EtherCATConfig/>", "eni.xml"); });
+  EXPECT_NE(e.find("eni.xml:1: <EtherCATConfig>: not an ESI file"), std::string::npos) << e;
+}
+
+TEST(EsiReader, ABadNumberNamesLineElementAndText) {
+  const std::string xml = device_xml(R"(<Sm StartAddress="#xZZ" ControlByte="#x26" Enable="1">MBoxOut</Sm>)");
+  const std::string e = error_of([&] { esi::parse_esi(xml, "d.xml"); });
+  EXPECT_NE(e.find("d.xml:9: <Sm>: StartAddress '#xZZ' is not a number"), std::string::npos) << e;
+}
+
+TEST(EsiReader, AnUnknownSyncManagerKindIsNamed) {
+  const std::string e = error_of([&] { esi::parse_esi(device_xml("<Sm StartAddress=\"#x1000\">Mailbox</Sm>"), "d.xml"); });
+  EXPECT_NE(e.find("d.xml:9: <Sm>: 'Mailbox': expected MBoxOut, MBoxIn, Outputs or Inputs"), std::string::npos) << e;
+}
+
+TEST(EsiReader, AnUnknownObjectTypeIsNamed) {
+  const std::string xml = device_xml(
+      "<GroupType>G</GroupType>\n<Profile><Dictionary><Objects>\n"
+      "<Object><Index>#x2000</Index><Name>X</Name><Type>WIDGET</Type><BitSize>8</BitSize></Object>\n"
+      "</Objects></Dictionary></Profile>");
+  const std::string e = error_of([&] { esi::parse_esi(xml, "d.xml"); });
+  EXPECT_NE(e.find("d.xml:11: <Object>: object 2000h sub 0: type 'WIDGET'"), std::string::npos) << e;
+}
+
+TEST(EsiReader, ABadAccessIsNamed) {
+  const std::string xml = device_xml(
+      "<GroupType>G</GroupType>\n<Profile><Dictionary><Objects>\n"
+      "<Object><Index>#x2000</Index><Name>X</Name><Type>UINT</Type><BitSize>16</BitSize>\n"
+      "<Flags><Access>read</Access></Flags></Object>\n</Objects></Dictionary></Profile>");
+  const std::string e = error_of([&] { esi::parse_esi(xml, "d.xml"); });
+  EXPECT_NE(e.find("d.xml:12: <Access>: 'read': expected ro, rw or wo"), std::string::npos) << e;
+}
+
+TEST(EsiReader, DeviceReferencesNameProductAndRevision) {
+  EXPECT_TRUE(esi::is_esi_reference("a/b/Devices.XML"));
+  EXPECT_TRUE(esi::is_esi_reference("d.xml:0x10:2"));
+  EXPECT_FALSE(esi::is_esi_reference("a6b"));
+  const esi::DeviceReference r = esi::parse_device_reference("dir/d.xml:0x3F03052:#x00110000");
+  EXPECT_EQ(r.path, "dir/d.xml");
+  EXPECT_EQ(r.product_code, 0x3F03052u);
+  EXPECT_EQ(r.revision, 0x00110000u);
+  EXPECT_FALSE(esi::parse_device_reference("d.xml").product_code.has_value());
+  const std::string e = error_of([] { esi::parse_device_reference("d.xml:12ab"); });
+  EXPECT_NE(e.find("the product code '12ab' is not a number"), std::string::npos) << e;
+}
+
+TEST(EsiReader, SeveralDevicesNeedAProductCode) {
+  std::string xml = device_xml("<GroupType>G</GroupType>");
+  const std::string second = "<Device><Type ProductCode=\"#x5\" RevisionNo=\"#x1\">T5</Type><Name>N5</Name><GroupType>G</GroupType></Device>\n";
+  xml.insert(xml.find("</Devices>"), second);
+  const std::vector<esi::EsiDevice> devices = esi::parse_esi(xml, "two.xml");
+  ASSERT_EQ(devices.size(), 2u);
+  const std::string e = error_of([&] { esi::select_device(devices, esi::parse_device_reference("two.xml")); });
+  EXPECT_NE(e.find("2 devices match"), std::string::npos) << e;
+  EXPECT_NE(e.find("two.xml:0x00000005:0x00000001"), std::string::npos) << e;
+  EXPECT_EQ(esi::select_device(devices, esi::parse_device_reference("two.xml:5")).type_text, "T5");
+  const std::string none = error_of([&] { esi::select_device(devices, esi::parse_device_reference("two.xml:7")); });
+  EXPECT_NE(none.find("no device with product code 0x00000007"), std::string::npos) << none;
+}
+
+TEST(EsiReader, AMissingFileIsNamed) {
+  const std::string e = error_of([] { esi::load_esi_device("/nonexistent/dir/x.xml"); });
+  EXPECT_NE(e.find("/nonexistent/dir/x.xml: cannot read the ESI file"), std::string::npos) << e;
+}
+
+}  // namespace
