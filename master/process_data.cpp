@@ -13,6 +13,7 @@ namespace {
 constexpr std::uint16_t kRxPdoAssign = 0x1C12;   // SM2 (outputs)
 constexpr std::uint16_t kTxPdoAssign = 0x1C13;   // SM3 (inputs)
 constexpr std::uint8_t kSmOutputs = 2, kSmInputs = 3;
+constexpr std::uint8_t kSiiSmOutputs = 3, kSiiSmInputs = 4;  // SII SyncManager category types
 // Defaults when the SII has no SyncManager category entry for SM2/SM3 (3-buffer mode; outputs
 // with ECAT write and PDI IRQ, inputs with ECAT read).
 constexpr std::uint8_t kSmControlOutputs = 0x64, kSmControlInputs = 0x20;
@@ -55,6 +56,16 @@ void read_pdo_configuration(SdoClient& sdo, SlaveProcessData& out) {
   out.from_coe = true;
 }
 
+namespace {
+// The SyncManager the SII declares for outputs (type 3) or inputs (4): SM2/SM3 on a slave with a
+// mailbox, SM0/SM1 on simple I/O; `fallback` when the SII has none.
+std::uint8_t process_data_sm(const SlaveInfo& info, std::uint8_t type, std::uint8_t fallback) {
+  for (std::size_t n = 0; n < info.sync_managers.size(); ++n)
+    if (info.sync_managers[n].type == type) return static_cast<std::uint8_t>(n);
+  return fallback;
+}
+}  // namespace
+
 void sii_pdo_configuration(const SlaveInfo& info, SlaveProcessData& out) {
   auto take = [](const std::vector<SiiPdo>& pdos, std::uint8_t sm) {
     std::vector<PdoMapping> list;
@@ -69,8 +80,8 @@ void sii_pdo_configuration(const SlaveInfo& info, SlaveProcessData& out) {
     }
     return list;
   };
-  out.outputs = take(info.rx_pdos, kSmOutputs);
-  out.inputs = take(info.tx_pdos, kSmInputs);
+  out.outputs = take(info.rx_pdos, process_data_sm(info, kSiiSmOutputs, kSmOutputs));
+  out.inputs = take(info.tx_pdos, process_data_sm(info, kSiiSmInputs, kSmInputs));
   out.from_coe = false;
 }
 
@@ -154,14 +165,16 @@ ProcessImageLayout configure_process_data(Master& master, std::vector<std::strin
       if (n < s.info.sync_managers.size()) return std::pair{s.info.sync_managers[n].start, s.info.sync_managers[n].control};
       return std::pair{fallback_start, fallback_control};
     };
-    const auto [out_start, out_control] = sii_sm(kSmOutputs, 0x1100, kSmControlOutputs);
-    const auto [in_start, in_control] = sii_sm(kSmInputs, 0x1400, kSmControlInputs);
+    const std::uint8_t out_sm = process_data_sm(s.info, kSiiSmOutputs, kSmOutputs);
+    const std::uint8_t in_sm = process_data_sm(s.info, kSiiSmInputs, kSmInputs);
+    const auto [out_start, out_control] = sii_sm(out_sm, 0x1100, kSmControlOutputs);
+    const auto [in_start, in_control] = sii_sm(in_sm, 0x1400, kSmControlInputs);
     pd.sm2_start = out_start;
     pd.sm3_start = in_start;
     pd.output_logical = out_at;
     pd.input_logical = in_at;
-    write_sm(master.transport(), s, kSmOutputs, out_start, pd.output_bytes, out_control);
-    write_sm(master.transport(), s, kSmInputs, in_start, pd.input_bytes, in_control);
+    write_sm(master.transport(), s, out_sm, out_start, pd.output_bytes, out_control);
+    write_sm(master.transport(), s, in_sm, in_start, pd.input_bytes, in_control);
     write_fmmu(master.transport(), s, 0, out_at, pd.output_bytes, out_start, reg::kFmmuTypeWrite);
     write_fmmu(master.transport(), s, 1, in_at, pd.input_bytes, in_start, reg::kFmmuTypeRead);
     out_at += pd.output_bytes;

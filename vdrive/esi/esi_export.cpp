@@ -269,7 +269,15 @@ std::string export_esi(const ProductProfile& p, const od::Dictionary& d, const E
 
   // FMMUs in the order the SII FMMU category declares them.
   constexpr const char* kFmmus[] = {"Outputs", "Inputs", "MBoxState"};
-  for (std::uint8_t i = 0; i < std::min<std::uint8_t>(p.esc.fmmu_count, 3); ++i) xml.element("Fmmu", kFmmus[i]);
+  if (!p.fmmu_usage.empty()) {
+    for (const std::uint8_t usage : p.fmmu_usage) {
+      namespace u = ecat::sii::fmmu_usage;
+      xml.element("Fmmu", usage == u::kOutputs ? "Outputs" : usage == u::kInputs ? "Inputs"
+                          : usage == u::kMailboxState ? "MBoxState" : "");
+    }
+  } else {
+    for (std::uint8_t i = 0; i < std::min<std::uint8_t>(p.esc.fmmu_count, 3); ++i) xml.element("Fmmu", kFmmus[i]);
+  }
   write_sync_managers(xml, p);
   write_pdos(xml, p, d);
   write_mailbox(xml, p);

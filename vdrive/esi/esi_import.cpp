@@ -12,6 +12,7 @@
 #include "ethercat/sii.hpp"
 #include "vdrive/esi/esi_dictionary_reader.hpp"
 #include "vdrive/esi/esi_error.hpp"
+#include "vdrive/esi/esi_pdo_objects.hpp"
 #include "vdrive/esi/esi_reader.hpp"
 #include "vdrive/esi/generic_cia402.hpp"
 #include "vdrive/profile/sii_image.hpp"
@@ -43,7 +44,16 @@ SyncManagerSpec::Kind sm_kind(const std::string& text) {
 
 void esc_and_mailbox(const EsiDevice& d, ProductProfile& p) {
   p.esc.port_descriptor = port_descriptor(d.physics);
-  if (!d.fmmus.empty()) p.esc.fmmu_count = static_cast<std::uint8_t>(std::min<std::size_t>(d.fmmus.size(), 16));
+  // The ESC has at least three FMMUs (ET1200); the SII lists the ones the device uses.
+  p.esc.fmmu_count = static_cast<std::uint8_t>(std::clamp<std::size_t>(d.fmmus.size(), 3, 16));
+  const bool standard_order = d.fmmus.size() == 3 && d.fmmus[0] == "Outputs" && d.fmmus[1] == "Inputs" &&
+                              d.fmmus[2] == "MBoxState";
+  if (!standard_order)
+    for (const std::string& f : d.fmmus)
+      p.fmmu_usage.push_back(f == "Outputs" ? ecat::sii::fmmu_usage::kOutputs
+                             : f == "Inputs" ? ecat::sii::fmmu_usage::kInputs
+                             : f == "MBoxState" ? ecat::sii::fmmu_usage::kMailboxState
+                                                : ecat::sii::fmmu_usage::kUnused);
   p.esc.sm_count = static_cast<std::uint8_t>(std::max<std::size_t>(4, std::min<std::size_t>(d.sync_managers.size(), 16)));
   // ConfigData: SII words 0-4 (PDI control, PDI configuration, SYNC pulse, extended PDI, alias).
   const std::vector<std::uint8_t>& c = d.config_data;
@@ -57,6 +67,8 @@ void esc_and_mailbox(const EsiDevice& d, ProductProfile& p) {
   p.esc.station_alias = word(4, p.esc.station_alias);
   if (d.eeprom_bytes) p.esc.eeprom_bytes = static_cast<std::uint16_t>(std::min<std::uint32_t>(*d.eeprom_bytes, 0xFFFF));
 
+  // No mailbox SyncManager, no mailbox: the SII mailbox words stay 0.
+  p.mailbox.rx_offset = p.mailbox.rx_size = p.mailbox.tx_offset = p.mailbox.tx_size = 0;
   for (const EsiSyncManager& sm : d.sync_managers) {
     SyncManagerSpec s;
     s.kind = sm_kind(sm.kind);
@@ -305,8 +317,10 @@ ImportedDevice import_device(const EsiDevice& d) {
   out.sii_image = sii_image(d, p);
   // PDO objects the file leaves without values get the default assignment and mapping of its PDOs,
   // as the device's firmware would have them (od/default_pdo_objects.hpp).
+  std::vector<od::ObjectDesc> objects = d.objects;
+  add_pdo_objects(objects, d);
   try {
-    out.dictionary = std::make_shared<const od::Dictionary>(od::Dictionary::from_objects(d.objects, p));
+    out.dictionary = std::make_shared<const od::Dictionary>(od::Dictionary::from_objects(std::move(objects), p));
   } catch (const EsiError&) {
     throw;
   } catch (const profile::ProfileError& e) {

@@ -175,6 +175,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
 
   // ---- TransitionHooks ----------------------------------------------------------------------
   CheckResult check_init_to_preop() override {
+    if (!profile.has_mailbox()) return CheckResult::pass();  // nothing to check (simple I/O)
     if (check_mailbox_sms(read_sms(), rules) != MailboxSmFault::Ok)
       return {codes.invalid_mailbox_config, ecat::AlState::Init};
     return CheckResult::pass();
@@ -199,7 +200,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   void entered(ecat::AlState from, ecat::AlState to) override {
     // The mailbox runs in PreOp, SafeOp, Op and Boot. Going to Init stops it and forgets its
     // state; the ESC's SyncManagers are left as they are (the master reconfigures them).
-    mailbox_running = to != ecat::AlState::Init;
+    mailbox_running = profile.has_mailbox() && to != ecat::AlState::Init;
     for (auto& m : modules) m->entered(from, to, now_);
   }
   Nanos now_ = 0;  // time of the event being serviced, for entered()

@@ -25,6 +25,10 @@ struct ProductProfile {
   Mailbox mailbox;
   MailboxSmRules mailbox_rules;
   std::vector<SyncManagerSpec> sync_managers;  // SII SyncManager category, in SM order
+  // SII FMMU category (ecat::sii::fmmu_usage values), when the device lists fewer FMMUs than its
+  // ESC has (an input terminal: Inputs only). Empty: Outputs, Inputs, MailboxState for
+  // esc.fmmu_count.
+  std::vector<std::uint8_t> fmmu_usage;
   bool has_bootstrap = false;                  // Boot state supported
   // Explicit Device ID (ETG.1000.6): AL control bit5 puts the device ID into AL status code 0x0134
   // and sets AL status bit5. A6B and DS1000A-EC support it, DS5C1 does not.
@@ -50,6 +54,19 @@ struct ProductProfile {
   std::vector<AlarmSpec> alarms;                      // profiles/<id>/alarms.yaml, in manual order
   std::vector<MotorSpec> motors;                      // profiles/<id>/motors.yaml (at least one entry)
   DriveSpec drive;                                    // profile.yaml `drive`
+
+  // Whether the device has a mailbox at all (an SM for it); simple I/O devices have none.
+  bool has_mailbox() const {
+    for (const SyncManagerSpec& sm : sync_managers)
+      if (sm.kind == SyncManagerSpec::Kind::MailboxOut) return true;
+    return false;
+  }
+  // The SyncManager that carries outputs (kind Outputs) or inputs, or `otherwise` when none does.
+  int process_data_sm(SyncManagerSpec::Kind kind, int otherwise) const {
+    for (std::size_t i = 0; i < sync_managers.size(); ++i)
+      if (sync_managers[i].kind == kind) return static_cast<int>(i);
+    return otherwise;
+  }
 
   // The alarm with vendor code `code` ("80.4", "E-804", "FF80h"), or nullptr.
   const AlarmSpec* find_alarm(std::string_view code) const {

@@ -101,6 +101,10 @@ Bytes general(const ProductProfile& p, StringTable& strings) {
 
 Bytes fmmus(const ProductProfile& p) {
   Bytes f;
+  if (!p.fmmu_usage.empty()) {
+    for (const std::uint8_t usage : p.fmmu_usage) f.u8(usage);
+    return f;
+  }
   constexpr std::uint8_t order[] = {fmmu_usage::kOutputs, fmmu_usage::kInputs, fmmu_usage::kMailboxState};
   for (std::uint8_t i = 0; i < p.esc.fmmu_count; ++i) f.u8(i < 3 ? order[i] : fmmu_usage::kUnused);
   return f;  // padded with 0xFF ("not used") by category()

@@ -50,6 +50,7 @@ MailboxModule::~MailboxModule() = default;
 
 // SM1's event is not in the fixed set: the module unmasks it itself while it needs it (watch_sm1).
 std::uint32_t MailboxModule::serviced_events() const {
+  if (!context_.profile.has_mailbox()) return 0;  // a device without one: SM0 is process data
   return sm_event(0) | al_event::kSmActivation;
 }
 
@@ -89,7 +90,7 @@ void MailboxModule::entered(ecat::AlState from, ecat::AlState to, Nanos now) {
     watch_sm1(false);
     return;
   }
-  if (from != ecat::AlState::Init) return;
+  if (from != ecat::AlState::Init || !context_.profile.has_mailbox()) return;
   running_ = true;
   boot_ = to == ecat::AlState::Boot;
   service(now);

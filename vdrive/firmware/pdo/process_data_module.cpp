@@ -1,6 +1,7 @@
 #include "vdrive/firmware/pdo/process_data_module.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <span>
 
 #include "ethercat/al_status_code.hpp"
@@ -14,8 +15,6 @@ namespace vdrive::firmware::pdo {
 
 namespace {
 
-constexpr std::uint32_t kSm2Event = 1u << (al_event::kSmShift + kOutputsSm);
-constexpr std::uint32_t kSm3Event = 1u << (al_event::kSmShift + kInputsSm);
 // The sync module owns the DC rules; the watchdog check only needs to know whether the slave
 // runs on SYNC0 (cyclic unit and SYNC0 both activated).
 constexpr std::uint8_t kDcSync0Active = reg::dc_activation::kCyclicOperation | reg::dc_activation::kSync0;
@@ -34,12 +33,20 @@ ProcessDataModule::ProcessDataModule(FirmwareContext& context)
       watchdog_limits_(watchdog_limits_for(context.profile)),
       codes_(context.profile.al_codes),
       ram_end_(reg::kRegisterEnd + 1024u * context.profile.esc.ram_kib),
-      sm_count_(std::clamp<int>(context.profile.esc.sm_count, 0, kMaxSyncManagers)) {
+      sm_count_(std::clamp<int>(context.profile.esc.sm_count, 0, kMaxSyncManagers)),
+      // SM2/SM3 on a device with a mailbox; simple I/O devices use SM0/SM1 (ESI, SII SM category).
+      outputs_sm_(std::clamp(context.profile.process_data_sm(profile::SyncManagerSpec::Kind::Outputs, kOutputsSm), 0,
+                             std::max(sm_count_ - 1, 0))),
+      inputs_sm_(std::clamp(context.profile.process_data_sm(profile::SyncManagerSpec::Kind::Inputs, kInputsSm), 0,
+                            std::max(sm_count_ - 1, 0))),
+      outputs_event_(1u << (al_event::kSmShift + outputs_sm_)),
+      inputs_event_(1u << (al_event::kSmShift + inputs_sm_)) {
   install_pdo_write_rules(ctx_.objects, ctx_.esm, limits_);
 }
 
 void ProcessDataModule::power_on(Nanos /*now*/) {
   running_ = false;
+  polling_ = false;
   outputs_valid_ = false;
   new_outputs_ = false;
   cycle_by_sync_ = false;
@@ -47,15 +54,30 @@ void ProcessDataModule::power_on(Nanos /*now*/) {
   tx_plan_.clear();
 }
 
+// Without an AL event for its process-data SyncManagers (control byte bit 5 clear, as on simple
+// I/O such as a digital output terminal) the firmware cannot wait for the master's frame: it looks
+// at the buffers every kPollPeriod, takes new outputs and refreshes the inputs.
+Nanos ProcessDataModule::next_deadline() const {
+  return running_ && polling_ && !cycle_by_sync_ ? poll_at_ : std::numeric_limits<Nanos>::max();
+}
+
+void ProcessDataModule::tick(Nanos now) {
+  if (!running_ || !polling_ || cycle_by_sync_ || now < poll_at_) return;
+  poll_at_ = now + kPollPeriod;
+  const std::uint8_t status = ctx_.pdi.read_u8(sm_register(outputs_sm_, reg::sm::kStatus));
+  if (rx_plan_.bytes() > 0 && (status & reg::sm::kIrqWrite) != 0) exchange_outputs(now);
+  produce_inputs(now);
+}
+
 std::uint32_t ProcessDataModule::serviced_events() const {
-  return kSm2Event | kSm3Event | al_event::kPdWatchdog | al_event::kSmActivation;
+  return outputs_event_ | inputs_event_ | al_event::kPdWatchdog | al_event::kSmActivation;
 }
 
 void ProcessDataModule::on_events(std::uint32_t events, Nanos now) {
   if (events & al_event::kPdWatchdog) on_watchdog();
   if ((events & al_event::kSmActivation) && running_) check_sms_while_running();
   if (!running_) return;
-  if (events & kSm2Event) {
+  if (events & outputs_event_) {
     if (cycle_by_sync_) {
       read_outputs();  // release the buffer; the objects are updated at SYNC0
       new_outputs_ = true;
@@ -64,7 +86,7 @@ void ProcessDataModule::on_events(std::uint32_t events, Nanos now) {
       produce_inputs(now);
     }
   }
-  if ((events & kSm3Event) && tx_plan_.bytes() > 0) {
+  if ((events & inputs_event_) && tx_plan_.bytes() > 0) {
     if (cycle_by_sync_) {
       write_inputs();  // hand out the inputs latched at the last sync point again
     } else {
@@ -96,7 +118,7 @@ void ProcessDataModule::exchange_outputs(Nanos now) {
   // taking the old target again as if the axis were to stand still for a cycle.
   bool fresh = true;
   if (cycle_by_sync_) {
-    const std::uint8_t status = ctx_.pdi.read_u8(sm_register(kOutputsSm, reg::sm::kStatus));
+    const std::uint8_t status = ctx_.pdi.read_u8(sm_register(outputs_sm_, reg::sm::kStatus));
     fresh = new_outputs_ || (status & reg::sm::kIrqWrite) != 0;
     new_outputs_ = false;
   }
@@ -129,9 +151,9 @@ void ProcessDataModule::on_watchdog() {
 void ProcessDataModule::check_sms_while_running() {
   for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
   const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));
-  if (check_process_data_sm(sms, kOutputsSm, rx_plan_.bytes(), ram_end_) != PdSmFault::Ok) {
+  if (check_process_data_sm(sms, outputs_sm_, true, rx_plan_.bytes(), ram_end_) != PdSmFault::Ok) {
     raise_fault(code_or(codes_.invalid_output_config, kEtgOutputConfig), ecat::AlState::PreOp);
-  } else if (check_process_data_sm(sms, kInputsSm, tx_plan_.bytes(), ram_end_) != PdSmFault::Ok) {
+  } else if (check_process_data_sm(sms, inputs_sm_, false, tx_plan_.bytes(), ram_end_) != PdSmFault::Ok) {
     raise_fault(code_or(codes_.invalid_input_config, kEtgInputConfig), ecat::AlState::PreOp);
   }
 }
@@ -153,17 +175,17 @@ CheckResult ProcessDataModule::check_preop_to_safeop() {
 
   for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
   const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));
-  if (check_process_data_sm(sms, kOutputsSm, rx_map_.bytes(), ram_end_) != PdSmFault::Ok) {
+  if (check_process_data_sm(sms, outputs_sm_, true, rx_map_.bytes(), ram_end_) != PdSmFault::Ok) {
     return {code_or(codes_.invalid_output_config, kEtgOutputConfig), ecat::AlState::PreOp};
   }
-  if (check_process_data_sm(sms, kInputsSm, tx_map_.bytes(), ram_end_) != PdSmFault::Ok) {
+  if (check_process_data_sm(sms, inputs_sm_, false, tx_map_.bytes(), ram_end_) != PdSmFault::Ok) {
     return {code_or(codes_.invalid_input_config, kEtgInputConfig), ecat::AlState::PreOp};
   }
 
   WatchdogSetting wd;
   const std::uint16_t wd_time = ctx_.pdi.read_u16(reg::kWatchdogTimeProcessData);
   wd.enabled = rx_map_.bytes() > 0 && wd_time != 0 &&
-               (sms[kOutputsSm].control & reg::sm::kWatchdogTrigger) != 0;
+               (sms[static_cast<std::size_t>(outputs_sm_)].control & reg::sm::kWatchdogTrigger) != 0;
   wd.time = process_data_watchdog_time(ctx_.pdi.read_u16(reg::kWatchdogDivider), wd_time);
   const bool dc = (ctx_.pdi.read_u8(reg::kDcActivation) & kDcSync0Active) == kDcSync0Active;
   wd.synchronised = dc || read_unsigned(ctx_.objects, kSm2Sync, 1) != 0;
@@ -180,8 +202,14 @@ void ProcessDataModule::entered(ecat::AlState from, ecat::AlState to, Nanos now)
     rx_plan_.build(ctx_.objects, rx_map_);
     tx_plan_.build(ctx_.objects, tx_map_);
     if (outputs_mapped_) outputs_mapped_(rx_map_);
-    sm2_start_ = sms_[kOutputsSm].start;
-    sm3_start_ = sms_[kInputsSm].start;
+    sm2_start_ = sms_[static_cast<std::size_t>(outputs_sm_)].start;
+    sm3_start_ = sms_[static_cast<std::size_t>(inputs_sm_)].start;
+    const auto event_enabled = [&](int sm, std::uint16_t bytes) {
+      return bytes == 0 || (sms_[static_cast<std::size_t>(sm)].control & reg::sm::kAlEventEnable) != 0;
+    };
+    polling_ = !event_enabled(outputs_sm_, rx_plan_.bytes()) ||
+               (rx_plan_.bytes() == 0 && tx_plan_.bytes() > 0 && !event_enabled(inputs_sm_, 0xFFFF));
+    poll_at_ = now + kPollPeriod;
     running_ = true;
     outputs_valid_ = false;
     produce_inputs(now);  // TxPDO valid from SafeOp on (A6B L7619-L7621)

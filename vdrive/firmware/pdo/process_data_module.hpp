@@ -43,6 +43,8 @@ public:
   void on_events(std::uint32_t events, Nanos now) override;
   CheckResult check_transition(ecat::AlState from, ecat::AlState to) override;
   void entered(ecat::AlState from, ecat::AlState to, Nanos now) override;
+  void tick(Nanos now) override;
+  Nanos next_deadline() const override;
 
   // Reads the whole SM2 buffer (releasing it) and, in Op, scatters it into the RxPDO objects.
   void exchange_outputs(Nanos now);
@@ -89,6 +91,11 @@ private:
   std::array<std::uint8_t, kMaxPdoBytes> tx_image_{};
   std::array<SmChannel, kMaxSyncManagers> sms_{};
   int sm_count_;
+  int outputs_sm_, inputs_sm_;                    // SM2/SM3, or the SMs an I/O device uses for them
+  std::uint32_t outputs_event_, inputs_event_;    // their AL event bits
+  static constexpr Nanos kPollPeriod = 100'000;   // buffers without AL events are looked at this often
+  bool polling_ = false;
+  Nanos poll_at_ = 0;
   std::uint16_t sm2_start_ = 0, sm3_start_ = 0;
   bool running_ = false;
   bool outputs_valid_ = false;

@@ -25,9 +25,14 @@ enum class PdSmFault : std::uint8_t {
 
 std::string_view describe(PdSmFault fault);
 
-// `sm` = 2 (outputs: master writes) or 3 (inputs: master reads); `sms` indexed by SM number;
+// `sm` carries outputs (master writes) or inputs (master reads); `sms` indexed by SM number;
 // process RAM is [0x1000, ram_end).
-PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, std::uint16_t mapped_bytes,
+PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, bool outputs, std::uint16_t mapped_bytes,
                                 std::uint32_t ram_end);
+// SM2 outputs, SM3 inputs.
+inline PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, std::uint16_t mapped_bytes,
+                                       std::uint32_t ram_end) {
+  return check_process_data_sm(sms, sm, sm == 2, mapped_bytes, ram_end);
+}
 
 }  // namespace vdrive::firmware::pdo
