@@ -1,13 +1,30 @@
 #include "vdrive/network/network.hpp"
 
-#include <algorithm>
-#include <limits>
+#include <fmt/core.h>
 
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "esc_model/sii_eeprom.hpp"
 #include "vdrive/esi/esi_import.hpp"
+#include "vdrive/od/object_store.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/profile/sii_image.hpp"
 
 namespace vdrive::network {
+namespace {
+
+// SII word 4 (configured station alias) and the configuration area's CRC (word 7 low byte).
+void set_station_alias(std::vector<std::uint8_t>& sii, std::uint16_t alias) {
+  if (sii.size() < 16) return;
+  sii[8] = static_cast<std::uint8_t>(alias);
+  sii[9] = static_cast<std::uint8_t>(alias >> 8);
+  sii[14] = esc::sii_config_crc(std::span<const std::uint8_t>(sii).first(14));
+}
+
+}  // namespace
 
 Network::Network(std::span<const std::string> product_ids, const Clock& clock,
                  const NetworkOptions& options)
@@ -27,6 +44,8 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
       slave->profile = profile::load_profile(id, options.profile_dir);
       esc_config = profile::make_esc_config(slave->profile);
     }
+    if (slaves_.size() < options.station_aliases.size() && options.station_aliases[slaves_.size()])
+      set_station_alias(esc_config.sii_image, *options.station_aliases[slaves_.size()]);
     slave->esc = std::make_unique<esc::Esc>(esc_config, clock);
     if (slaves_.size() < options.dc_models.size()) {
       const DcModel& dc = options.dc_models[slaves_.size()];
@@ -38,8 +57,44 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
     segment_.append(*slave->esc);
     slaves_.push_back(std::move(slave));
   }
+  resolve_wires(options.wires);
   const Nanos now = clock.now();
   for (auto& slave : slaves_) slave->firmware->power_on(now);
+}
+
+void Network::resolve_wires(const std::vector<SignalWire>& wires) {
+  for (const SignalWire& w : wires) {
+    auto entry = [&](const WireEnd& end, const char* which) -> std::pair<od::ObjectStore*, const od::EntryDesc*> {
+      if (end.slave >= slaves_.size())
+        throw std::invalid_argument(fmt::format("{}: {} slave {} does not exist (the network has {})", w.name, which,
+                                                end.slave + 1, slaves_.size()));
+      od::ObjectStore& objects = slaves_[end.slave]->firmware->objects();
+      const od::EntryDesc* e = objects.dictionary().find(end.index, end.subindex);
+      if (e == nullptr)
+        throw std::invalid_argument(fmt::format("{}: {} slave {} ({}) has no object {:04X}h:{:02X}h", w.name, which,
+                                                end.slave + 1, slaves_[end.slave]->profile.id, end.index, end.subindex));
+      return {&objects, e};
+    };
+    const auto [from_store, from] = entry(w.from, "source");
+    const auto [to_store, to] = entry(w.to, "target");
+    if (from->bit_length != to->bit_length)
+      throw std::invalid_argument(fmt::format("{}: the source is {} bits, the target {}", w.name, from->bit_length,
+                                              to->bit_length));
+    wires_.push_back({from_store->raw(*from).data(), to_store->raw(*to).data(), from->bit_length});
+  }
+}
+
+// Whole bytes are copied; a value of fewer than 8 bits only its bits (the rest of the byte is the
+// target's own).
+void Network::copy_wires() {
+  for (const Wire& w : wires_) {
+    if (w.bits >= 8) {
+      std::memcpy(w.to, w.from, (w.bits + 7u) / 8u);
+    } else {
+      const auto mask = static_cast<std::uint8_t>((1u << w.bits) - 1u);
+      *w.to = static_cast<std::uint8_t>((*w.to & ~mask) | (*w.from & mask));
+    }
+  }
 }
 
 Network::~Network() = default;
@@ -64,6 +119,7 @@ void Network::service_irqs(Nanos now, BetweenSlaves* between) {
     slave->firmware->on_irq(now);
     if (between != nullptr) between->run();
   }
+  copy_wires();
 }
 
 void Network::tick(Nanos now, BetweenSlaves* between) {
@@ -76,6 +132,7 @@ void Network::tick(Nanos now, BetweenSlaves* between) {
     slave->firmware->tick(now);
     if (between != nullptr) between->run();
   }
+  copy_wires();
 }
 
 Nanos Network::next_deadline() const {

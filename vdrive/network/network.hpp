@@ -21,6 +21,7 @@
 #include "vdrive/firmware/slave_firmware.hpp"
 #include "vdrive/network/between_slaves.hpp"
 #include "vdrive/network/segment.hpp"
+#include "vdrive/network/signal_wire.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
 namespace vdrive::network {
@@ -37,12 +38,18 @@ struct NetworkOptions {
   std::vector<DcModel> dc_models = {};  // per slave in cable order; slaves beyond it: ideal oscillator
   // Per slave in cable order: the machine its drive moves; absent/empty = the product's default plant.
   std::vector<std::optional<plant::PlantDescription>> plants = {};
+  // Per slave in cable order: the configured station alias its EEPROM holds (SII word 4, loaded
+  // into 0x0012 at power-on); absent: the product's (usually 0).
+  std::vector<std::optional<std::uint16_t>> station_aliases = {};
+  // Wires between slaves' entries (signal_wire.hpp).
+  std::vector<SignalWire> wires = {};
 };
 
 class Network {
 public:
   // Throws profile::ProfileError for an unknown product or a broken profile (esi::EsiError, one,
-  // for a broken or ambiguous ESI file). `clock` must
+  // for a broken or ambiguous ESI file), std::invalid_argument for a wire whose ends do not exist
+  // or differ in size. `clock` must
   // outlive the network (the ESCs read it).
   Network(std::span<const std::string> product_ids, const Clock& clock,
           const NetworkOptions& options = {});
@@ -82,7 +89,17 @@ private:
     std::unique_ptr<firmware::SlaveFirmware> firmware;
   };
 
+  // A wire resolved to the bytes it copies (allocation-free on the frame path).
+  struct Wire {
+    const std::uint8_t* from = nullptr;
+    std::uint8_t* to = nullptr;
+    std::uint16_t bits = 0;
+  };
+  void resolve_wires(const std::vector<SignalWire>& wires);
+  void copy_wires();
+
   std::vector<std::unique_ptr<Slave>> slaves_;  // stable addresses for the references above
+  std::vector<Wire> wires_;
   Segment segment_;
 };
 
