@@ -1,7 +1,8 @@
 #pragma once
-// Network: the slaves of one line, as the event loop drives them. For each product (cable order)
-// it loads the profile, builds the ESC from it (identity registers, SII image) and the slave
-// firmware, and strings the ESCs into a Segment; all are powered on at construction.
+// Network: the slaves of one link, as the event loop drives them. For each product (in the order
+// given) it loads the profile, builds the ESC from it (identity registers, SII image) and the
+// slave firmware, and cables the ESCs into a Segment as NetworkOptions::topology says (by default
+// a line in that order); all are powered on at construction.
 //
 // Per frame: the segment processes it in place, then the firmware of every slave whose PDI IRQ
 // is asserted is serviced (as a microcontroller's IRQ handler would run right after the frame).
@@ -19,6 +20,7 @@
 #include "vdrive/firmware/slave_firmware.hpp"
 #include "vdrive/network/between_slaves.hpp"
 #include "vdrive/network/segment.hpp"
+#include "vdrive/network/topology.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
 namespace vdrive::network {
@@ -30,17 +32,21 @@ struct DcModel {
 };
 
 struct NetworkOptions {
-  Nanos hop_delay = 500;     // ns per slave and direction, see Segment
+  Nanos hop_delay = 500;     // ns per hop and direction, see Segment
+  // Where each slave's port 0 is cabled (topology.hpp), per slave in the order given; empty: the
+  // line, slave i's port 1 to slave i+1.
+  Topology topology = {};
   std::string profile_dir;   // empty: the profiles built into the binary
-  std::vector<DcModel> dc_models = {};  // per slave in cable order; slaves beyond it: ideal oscillator
-  // Per slave in cable order: the machine its drive moves; absent/empty = the product's default plant.
+  std::vector<DcModel> dc_models = {};  // per slave in the order given; slaves beyond it: ideal oscillator
+  // Per slave in the order given: the machine its drive moves; absent/empty = the product's default plant.
   std::vector<std::optional<plant::PlantDescription>> plants = {};
 };
 
 class Network {
 public:
-  // Throws profile::ProfileError for an unknown product or a broken profile. `clock` must
-  // outlive the network (the ESCs read it).
+  // Throws profile::ProfileError for an unknown product or a broken profile, std::invalid_argument
+  // for a topology the products' ports cannot make (validate()). `clock` must outlive the network
+  // (the ESCs read it).
   Network(std::span<const std::string> product_ids, const Clock& clock,
           const NetworkOptions& options = {});
   ~Network();
