@@ -337,30 +337,40 @@ TEST_F(Tree, CorruptedFrameIsCountedAtEveryPortItPasses) {
   }
 }
 
-TEST(TreeLine, TheLineSpelledOutIsTheDefaultLine) {
+// The line has its own walk (no tree bookkeeping); a chain cabled through other ports takes the
+// tree's. Both must give the same positions, working counters and times.
+TEST(TreeLine, AChainThroughPorts3And2IsTimedAsTheLine) {
   VirtualClock clock{1'000'000};
   std::vector<std::unique_ptr<esc::Esc>> escs;
-  Segment by_default{600}, spelled_out{600};
+  Segment line{600}, chain{600};
   for (int i = 0; i < 6; ++i) {
-    escs.push_back(std::make_unique<esc::Esc>(esc::EscConfig{}, clock));
-    (i < 3 ? by_default : spelled_out).append(*escs.back());
+    escs.push_back(std::make_unique<esc::Esc>(ports(i < 3 ? 0x0F : 0xFF), clock));
+    (i < 3 ? line : chain).append(*escs.back());
   }
-  spelled_out.set_topology(Topology::line(3));
-  for (Segment* s : {&by_default, &spelled_out}) {
+  chain.set_topology(Topology{{Uplink{Uplink::kMaster, 0}, Uplink{0, 3}, Uplink{1, 2}}});
+  const Topology spelled_out = Topology::line(3);
+  EXPECT_TRUE(is_line(spelled_out));
+  EXPECT_FALSE(is_line(Topology{{Uplink{Uplink::kMaster, 0}, Uplink{0, 3}, Uplink{1, 2}}}));
+  for (Segment* s : {&line, &chain}) {
     TestFrame f;
+    const std::size_t at = f.read(BRD, 0, 0x0000, 1);
     f.add(BWR, 0, 0x0900, le_bytes(0, 4));
     ASSERT_TRUE(s->process(f.span(), clock.now()));
+    EXPECT_EQ(f.wkc(at, 1), 3);
   }
-  for (std::uint16_t reg = 0x0900; reg < 0x0910; ++reg)
-    for (int i = 0; i < 3; ++i) {
-      TestFrame fa, fb;
-      const std::size_t at = fa.read(APRD, static_cast<std::uint16_t>(-i), reg, 1);
-      fb.read(APRD, static_cast<std::uint16_t>(-i), reg, 1);
-      ASSERT_TRUE(by_default.process(fa.span(), clock.now()));
-      ASSERT_TRUE(spelled_out.process(fb.span(), clock.now()));
-      EXPECT_EQ(fa[at], fb[at]) << "register " << reg << " slave " << i;
+  // Port 0's time and the way out's (line: port 1; chain: port 3, then 2), read as a master would.
+  for (int i = 0; i < 3; ++i) {
+    std::array<std::uint64_t, 2> times{};
+    for (Segment* s : {&line, &chain}) {
+      TestFrame f;
+      const std::size_t at = f.read(APRD, static_cast<std::uint16_t>(-i), 0x0900, 16);
+      ASSERT_TRUE(s->process(f.span(), clock.now()));
+      const int way_out = s == &line ? 1 : (i == 0 ? 3 : 2);
+      EXPECT_EQ(f.wkc(at, 16), 1);
+      times[s == &line ? 0 : 1] = f.le(at, 4) | f.le(at + static_cast<std::size_t>(4 * way_out), 4) << 32;
     }
-  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(spelled_out.uplink(i).parent, static_cast<int>(i) - 1);
+    EXPECT_EQ(times[0], times[1]) << "slave " << i << ": port 0 and the way out";
+  }
 }
 
 }  // namespace

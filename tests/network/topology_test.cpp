@@ -83,6 +83,14 @@ TEST(Topology, OneUplinkPerSlave) {
   EXPECT_EQ(error_of(Topology{}, {0x0C}), "topology: slave 1: its ESC implements no port 0 (port descriptor 0x0C)");
 }
 
+TEST(Topology, TheLineIsRecognisedSpelledOutOrNot) {
+  EXPECT_TRUE(is_line(Topology{}));
+  EXPECT_TRUE(is_line(Topology::line(4)));
+  EXPECT_TRUE(is_line(of({{Uplink::kMaster, 0}, {0, 1}})));
+  EXPECT_FALSE(is_line(of({{Uplink::kMaster, 0}, {0, 2}})));
+  EXPECT_FALSE(is_line(of({{1, 1}, {Uplink::kMaster, 0}})));
+}
+
 TEST(Topology, VisitingOrderIsDepthFirstInPortOrderThreeOneTwo) {
   const Topology tree = of({{Uplink::kMaster, 0}, {0, 2}, {0, 1}, {0, 3}, {3, 1}});
   EXPECT_EQ(visiting_order(tree, 5), (std::vector<std::size_t>{0, 3, 4, 2, 1}));

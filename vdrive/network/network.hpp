@@ -33,13 +33,13 @@ struct DcModel {
 
 struct NetworkOptions {
   Nanos hop_delay = 500;     // ns per hop and direction, see Segment
-  // Where each slave's port 0 is cabled (topology.hpp), per slave in the order given; empty: the
-  // line, slave i's port 1 to slave i+1.
-  Topology topology = {};
   std::string profile_dir;   // empty: the profiles built into the binary
   std::vector<DcModel> dc_models = {};  // per slave in the order given; slaves beyond it: ideal oscillator
   // Per slave in the order given: the machine its drive moves; absent/empty = the product's default plant.
   std::vector<std::optional<plant::PlantDescription>> plants = {};
+  // Where each slave's port 0 is cabled (topology.hpp), per slave in the order given; empty: the
+  // line, slave i's port 1 to slave i+1.
+  Topology topology = {};
 };
 
 class Network {

@@ -93,18 +93,32 @@ private:
     std::uint32_t slave;
     std::uint32_t next;
   };
+  // A slave's cabled downstream ports in port order, so that a frame's walk looks only at ports
+  // with a cable (in the line: one per slave).
+  struct Branch {
+    std::int32_t child;
+    std::int32_t port;
+  };
+  struct Branches {
+    std::array<Branch, 3> in_order;
+    std::uint32_t count;
+  };
   void cable(const Topology& topology);
   void update_links();
   // The frame's path and timing before any ESC processes it: fills order_ (the ESCs in visiting
   // order) and timings_ (per slave); returns how many ESCs the frame visits.
   std::size_t plan(Nanos rx_time);
+  // The line's walk needs only where the frame turns.
+  std::size_t line_turn() const;
 
   Nanos hop_delay_;
   std::vector<esc::Esc*> slaves_;
   std::vector<std::uint8_t> cable_ok_;               // cable_ok_[i] != 0: the cable into slave i
   std::vector<Uplink> uplinks_;                      // per slave, the line filled in
   std::vector<std::array<std::int32_t, 4>> children_;  // children_[s][p]: slave on port p, or -1
+  std::vector<Branches> branches_;                   // the same in port order 3, 1, 2
   std::int32_t root_ = -1;                           // the slave on the master's cable
+  bool line_ = true;                                 // cabled as the line: the line's own walk
   // Per-frame scratch, sized when slaves are cabled so that frames allocate nothing.
   std::vector<esc::FrameTiming> timings_;
   std::vector<std::uint32_t> order_;

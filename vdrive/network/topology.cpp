@@ -56,6 +56,15 @@ Topology Topology::line(std::size_t slaves) {
   return t;
 }
 
+bool is_line(const Topology& t) {
+  for (std::size_t i = 0; i < t.uplinks.size(); ++i) {
+    const Uplink& u = t.uplinks[i];
+    const bool in_line = i == 0 ? u.parent == Uplink::kMaster : u.parent == static_cast<int>(i) - 1 && u.port == 1;
+    if (!in_line) return false;
+  }
+  return true;
+}
+
 void validate(const Topology& t, std::span<const std::uint8_t> port_descriptors) {
   const std::size_t n = port_descriptors.size();
   for (std::size_t i = 0; i < n; ++i)

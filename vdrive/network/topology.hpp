@@ -39,6 +39,10 @@ struct Topology {
 // (every slave leads back to the master). `port_descriptors` holds each slave's 0x0007.
 void validate(const Topology& topology, std::span<const std::uint8_t> port_descriptors);
 
+// Whether `topology` is the line (empty, or spelled out: slave 0 on the master, slave i on port 1
+// of slave i-1).
+bool is_line(const Topology& topology);
+
 // The slaves in the order a frame visits them with every cable connected and every port open:
 // position k (auto-increment address -k) is slave visiting_order(...)[k]. `topology` must be valid.
 std::vector<std::size_t> visiting_order(const Topology& topology, std::size_t slaves);
