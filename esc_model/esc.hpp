@@ -60,7 +60,9 @@ public:
 
   // Physical link per port; set by the segment (topology, cable break). Updates DL status.
   void set_links(const PortLinks& links);
-  // Whether the ESC forwards out of port 1 (open, link up and not closed by DL control 0x0100).
+  // Whether the ESC sends a frame out of `port` (0..3): implemented in the port descriptor
+  // (0x0007), link up and not closed by loop control (DL control 0x0100); otherwise the port is
+  // looped back inside the ESC and the frame goes on to the next port in the order 0-3-1-2.
   bool port_forwards(int port) const;
 
   // ---- PDI side (firmware) ----------------------------------------------------------------

@@ -76,7 +76,7 @@ const std::map<std::string, std::vector<std::string>> kOptions = {
     {"sii", {"--drive", "--output", "--hex", "--profile-dir"}},
     {"esi", {"--drive", "--output", "--without-od", "--eeprom-image", "--profile-dir"}},
     {"scenario run", {"--junit", "--trace", "--pcap", "--seed", "--verbose", "--veth", "--iface"}},
-    {"fault inject", {"--iface", "--control", "--json", "--slave", "--duration", "--probability", "--direction", "--delay",
+    {"fault inject", {"--iface", "--control", "--json", "--slave", "--port", "--duration", "--probability", "--direction", "--delay",
                       "--count", "--abort-code", "--code", "--position", "--load-scale", "--force"}},
     {"fault clear", {"--iface", "--control", "--json", "--all"}},
     {"fault list", {"--iface", "--control", "--json"}},

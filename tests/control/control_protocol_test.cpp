@@ -49,6 +49,15 @@ TEST(ControlProtocol, PerKindFields) {
   EXPECT_DOUBLE_EQ(lc.fault.load_scale, 2.5);
   EXPECT_DOUBLE_EQ(lc.fault.force, -3.0);
   EXPECT_EQ(parse_request(R"({"op":"inject","fault":{"kind":"link_down","slave":2,"duration":"1s"}})").fault.slave, 2);
+  const ControlRequest at_port = parse_request(R"({"op":"inject","fault":{"kind":"link_down","slave":1,"port":3}})");
+  EXPECT_EQ(at_port.fault.slave, 1);
+  EXPECT_EQ(at_port.fault.port, 3);
+  EXPECT_EQ(parse_request(R"({"op":"inject","fault":{"kind":"link_down","slave":2}})").fault.port, 0) << "the cable into it";
+}
+
+TEST(ControlProtocol, PortIsLinkDownsOnly) {
+  EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"link_down","slave":1,"port":4}})"), HasSubstr("\"port\""));
+  EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"jam","slave":1,"port":1}})"), HasSubstr("\"port\""));
 }
 
 TEST(ControlProtocol, OtherOps) {

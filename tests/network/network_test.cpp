@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,11 @@ using test::first_data;
 using test::first_wkc;
 
 constexpr std::uint8_t kAprd = 0x01, kApwr = 0x02, kBrd = 0x07;
+
+std::vector<std::uint8_t> exchange_brd(Network& net, const VirtualClock& clock) {
+  auto frame = ethercat_frame(kBrd, 0, ecat::reg::kType, 1);
+  return net.process_frame(frame, clock.now()) ? frame : std::vector<std::uint8_t>{};
+}
 
 class NetworkTest : public ::testing::Test {
 protected:
@@ -126,6 +132,31 @@ TEST(NetworkErrors, UnknownProductIsRefused) {
   VirtualClock clock;
   const std::vector<std::string> ids = {"a6b", "nosuchdrive"};
   EXPECT_THROW(Network(ids, clock), profile::ProfileError);
+}
+
+TEST(NetworkTopology, TheOptionsCableTheSlaves) {
+  // The DS5C1 on the master, the A6B behind its port 1: position 0 is the second product given.
+  VirtualClock clock{1'000'000};
+  NetworkOptions options;
+  options.topology.uplinks = {Uplink{1, 1}, Uplink{Uplink::kMaster, 0}};
+  Network net(std::vector<std::string>{"a6b", "ds5c1"}, clock, options);
+  EXPECT_EQ(net.segment().uplink(0).parent, 1);
+  auto frame = ethercat_frame(kAprd, 0, ecat::reg::kType, 1);
+  ASSERT_TRUE(net.process_frame(frame, clock.now()));
+  EXPECT_EQ(first_data(frame)[0], profile::load_profile("ds5c1").esc.type);
+  EXPECT_EQ(first_wkc(exchange_brd(net, clock)), 2);
+}
+
+TEST(NetworkTopology, ATopologyTheProductsCannotMakeIsRefused) {
+  VirtualClock clock;
+  NetworkOptions options;
+  options.topology.uplinks = {Uplink{Uplink::kMaster, 0}, Uplink{0, 2}};  // the A6B has ports 0 and 1
+  try {
+    Network net(std::vector<std::string>{"a6b", "ds5c1"}, clock, options);
+    FAIL() << "port 2 of an A6B accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("slave 2: cabled to port 2 of slave 1"), std::string::npos) << e.what();
+  }
 }
 
 TEST(NetworkErrors, AnEmptyLineReturnsNothing) {

@@ -125,6 +125,19 @@ TEST(ScenarioLoader, MistakesNameFileLineColumnAndField) {
   EXPECT_NE(error_of("duration: [1s\n").find("t.yaml:"), std::string::npos);
 }
 
+TEST(ScenarioLoader, LinkDownNamesACableByTheSlaveItLeadsIntoOrByAPort) {
+  const std::string head = "duration: 1s\nsegment:\n  slaves:\n    - product: a6b\n    - product: ds5c1\n";
+  const Scenario s = parse_scenario(head + "timeline:\n  - {at: 1ms, fault: {kind: link_down, slave: 2}}\n"
+                                           "  - {at: 2ms, fault: {kind: link_down, slave: 1, port: 1}}\n", "t.yaml");
+  EXPECT_EQ(std::get<FaultAction>(s.steps[0].action).fault.port, 0);
+  EXPECT_EQ(std::get<FaultAction>(s.steps[1].action).fault.slave, 1);
+  EXPECT_EQ(std::get<FaultAction>(s.steps[1].action).fault.port, 1);
+  EXPECT_NE(error_of(head + "timeline:\n  - {at: 1s, fault: {kind: link_down, slave: 1, port: 4}}\n").find("timeline[0].fault.port"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "timeline:\n  - {at: 1s, fault: {kind: jam, slave: 1, port: 1}}\n").find("timeline[0].fault.port: unknown key"),
+            std::string::npos);
+}
+
 TEST(ScenarioLoader, PlantFilesAreReadBesideTheScenario) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("vdrive-scenario-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir / "plants");

@@ -7,6 +7,7 @@ namespace vdrive::cli {
 void add_fault_inject_options(CLI::App* inj, FaultInjectOptions& o) {
   inj->add_option("kind", o.kind, "Fault kind")->required();
   inj->add_option("--slave", o.slave, "Slave in cable order, 1 = first (esc, mailbox, drive, plant faults; link_down)");
+  inj->add_option("--port", o.port, "link_down: the cable at this port of --slave (0 = the cable into it, 1-3 = out of it)");
   inj->add_option("--duration", o.duration, "How long, e.g. 250ms (default: until cleared)");
   inj->add_option("--probability", o.probability, "Per frame, 0..1 (drop, corrupt, duplicate, reorder; default 1)");
   inj->add_option("--direction", o.direction, "both, to_slaves or to_master (wire faults; default both)");
@@ -22,6 +23,7 @@ void add_fault_inject_options(CLI::App* inj, FaultInjectOptions& o) {
 nlohmann::json fault_json(const FaultInjectOptions& o) {
   nlohmann::json f{{"kind", o.kind}};
   if (o.slave) f["slave"] = *o.slave;
+  if (o.port) f["port"] = *o.port;
   if (o.count) f["count"] = *o.count;
   if (o.duration) f["duration"] = *o.duration;
   if (o.direction) f["direction"] = *o.direction;

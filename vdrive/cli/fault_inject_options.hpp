@@ -13,7 +13,7 @@ namespace vdrive::cli {
 
 struct FaultInjectOptions {
   std::string kind;
-  std::optional<int> slave, count;
+  std::optional<int> slave, port, count;
   std::optional<std::string> duration, direction, delay, abort_code, code;
   std::optional<double> probability, position, load_scale, force;
 };

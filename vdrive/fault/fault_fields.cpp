@@ -25,6 +25,7 @@ FaultSpec read_fault(FaultFieldSource& src, int max_slave) {
     if (!src.has("slave")) src.missing("slave", fmt::format("kind \"{}\" acts on one slave (1 = first)", kind));
     f.slave = static_cast<int>(src.integer("slave", 1, max_slave));
   }
+  if (f.kind == K::link_down && src.has("port")) f.port = static_cast<int>(src.integer("port", 0, 3));
   if (!i.one_shot && src.has("duration")) f.duration = src.time("duration");
   switch (f.kind) {
     case K::drop: case K::corrupt: case K::duplicate: case K::reorder: case K::delay:

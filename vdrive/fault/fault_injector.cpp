@@ -47,7 +47,9 @@ void FaultInjector::check(const FaultSpec& s) const {
   const int n = static_cast<int>(network_.size());
   if (s.kind == FaultKind::link_down) {
     if (s.slave < 1 || s.slave > n)
-      throw FaultError(fmt::format("{}: the line has cables into slaves 1..{}", where(), n));
+      throw FaultError(fmt::format("{}: the network has cables into slaves 1..{}", where(), n));
+    if (network_.segment().cabled_at(static_cast<std::size_t>(s.slave - 1), s.port) < 0)
+      throw FaultError(fmt::format("{}: nothing is cabled to port {} of slave {}", where(), s.port, s.slave));
     return;
   }
   if (i.layer == Layer::wire) {
@@ -138,12 +140,16 @@ void FaultInjector::apply_wire() {
 }
 
 void FaultInjector::apply_cables() {
-  const int n = static_cast<int>(network_.size());
-  for (int slave = 1; slave <= n; ++slave) {
+  network::Segment& segment = network_.segment();
+  // A cable is named by the slave it leads into (Segment); a fault names it by either end.
+  const auto leads_into = [&](const FaultSpec& s) {
+    return segment.cabled_at(static_cast<std::size_t>(s.slave - 1), s.port);
+  };
+  for (std::size_t into = 0; into < network_.size(); ++into) {
     bool broken = false;
-    for (const ActiveFault& f : active_) broken |= f.spec.kind == FaultKind::link_down && f.spec.slave == slave;
-    // Segment numbers cables by the slave before them: -1 is the master's cable into slave 1.
-    if (network_.segment().cable_connected(slave - 2) == broken) network_.segment().set_cable(slave - 2, !broken);
+    for (const ActiveFault& f : active_)
+      broken |= f.spec.kind == FaultKind::link_down && leads_into(f.spec) == static_cast<int>(into);
+    if (segment.port_cable_connected(into, 0) == broken) segment.set_port_cable(into, 0, !broken);
   }
 }
 

@@ -16,7 +16,7 @@ constexpr std::array<FaultKindInfo, 26> kCatalogue{{
     {K::duplicate, "duplicate", L::wire, false, "frames delivered twice"},
     {K::reorder, "reorder", L::wire, false, "a frame held back behind the next one"},
     {K::delay, "delay", L::wire, false, "every frame held for `delay`"},
-    {K::link_down, "link_down", L::wire, false, "cable into slave N broken (port links down on both sides), healed at the end"},
+    {K::link_down, "link_down", L::wire, false, "cable into slave N (or at its `port`) broken (links down on both sides), healed at the end"},
     {K::wkc_error, "wkc_error", L::esc, false, "the ESC executes nothing addressed to it: working counters fall short"},
     {K::sii_error, "sii_error", L::esc, false, "SII EEPROM reads fail with the EEPROM error bits"},
     {K::sync_lost, "sync_lost", L::esc, false, "the DC unit generates no SYNC0/SYNC1"},
@@ -79,7 +79,9 @@ std::string describe(const FaultSpec& s) {
       text += fmt::format(" {} p={}", direction_name(s.direction), s.probability);
       break;
     case K::delay: text += fmt::format(" {} {} ns", direction_name(s.direction), s.delay); break;
-    case K::link_down: text += fmt::format(" cable into slave {}", s.slave); break;
+    case K::link_down:
+      text += s.port == 0 ? fmt::format(" cable into slave {}", s.slave) : fmt::format(" cable at slave {} port {}", s.slave, s.port);
+      break;
     case K::lost_reply: case K::duplicate_reply: text += fmt::format(" slave {} x{}", s.slave, s.count); break;
     case K::sdo_abort: text += fmt::format(" slave {} abort 0x{:08X}", s.slave, s.abort_code); break;
     case K::alarm: text += fmt::format(" slave {} code {}", s.slave, s.alarm); break;

@@ -44,9 +44,11 @@ enum class WireDirection : std::uint8_t { both, to_slaves, to_master };
 
 struct FaultSpec {
   FaultKind kind = FaultKind::drop;
-  // 1-based slave in cable order for esc, mailbox, drive and plant faults. link_down: the cable
-  // into this slave's port 0 (1 = the cable from the master). Other wire faults: unused.
+  // 1-based slave (the network's order) for esc, mailbox, drive and plant faults. link_down: the
+  // cable at this slave's port `port`; port 0 is the cable into it (slave 1: from the master),
+  // ports 1..3 lead to the slaves cabled behind it. Other wire faults: unused.
   int slave = 0;
+  int port = 0;                                // link_down only
   Nanos duration = 0;                          // 0: until cleared (or the end of the run)
   // wire
   WireDirection direction = WireDirection::both;

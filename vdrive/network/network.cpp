@@ -57,6 +57,7 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
     segment_.append(*slave->esc);
     slaves_.push_back(std::move(slave));
   }
+  segment_.set_topology(options.topology);
   resolve_wires(options.wires);
   const Nanos now = clock.now();
   for (auto& slave : slaves_) slave->firmware->power_on(now);

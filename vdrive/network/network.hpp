@@ -1,9 +1,10 @@
 #pragma once
-// Network: the slaves of one line, as the event loop drives them. For each slave (cable order) it
-// loads the product, a built-in or --profile-dir product id ("a6b") or a device of an ESI file
-// ("EL1008.xml", "devices.xml:0x3F03052:0x110000", esi/esi_import.hpp), builds the ESC from it
-// (identity registers, SII image) and the slave firmware, and strings the ESCs into a Segment;
-// all are powered on at construction.
+// Network: the slaves of one link, as the event loop drives them. For each slave (in the order
+// given) it loads the product, a built-in or --profile-dir product id ("a6b") or a device of an ESI
+// file ("EL1008.xml", "devices.xml:0x3F03052:0x110000", esi/esi_import.hpp), builds the ESC from it
+// (identity registers, SII image) and the slave firmware, and cables the ESCs into a Segment as
+// NetworkOptions::topology says (by default a line in that order); all are powered on at
+// construction.
 //
 // Per frame: the segment processes it in place, then the firmware of every slave whose PDI IRQ
 // is asserted is serviced (as a microcontroller's IRQ handler would run right after the frame).
@@ -22,6 +23,7 @@
 #include "vdrive/network/between_slaves.hpp"
 #include "vdrive/network/segment.hpp"
 #include "vdrive/network/signal_wire.hpp"
+#include "vdrive/network/topology.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
 namespace vdrive::network {
@@ -33,23 +35,26 @@ struct DcModel {
 };
 
 struct NetworkOptions {
-  Nanos hop_delay = 500;     // ns per slave and direction, see Segment
+  Nanos hop_delay = 500;     // ns per hop and direction, see Segment
   std::string profile_dir;   // empty: the profiles built into the binary
-  std::vector<DcModel> dc_models = {};  // per slave in cable order; slaves beyond it: ideal oscillator
-  // Per slave in cable order: the machine its drive moves; absent/empty = the product's default plant.
+  std::vector<DcModel> dc_models = {};  // per slave in the order given; slaves beyond it: ideal oscillator
+  // Per slave in the order given: the machine its drive moves; absent/empty = the product's default plant.
   std::vector<std::optional<plant::PlantDescription>> plants = {};
-  // Per slave in cable order: the configured station alias its EEPROM holds (SII word 4, loaded
+  // Per slave in the order given: the configured station alias its EEPROM holds (SII word 4, loaded
   // into 0x0012 at power-on); absent: the product's (usually 0).
   std::vector<std::optional<std::uint16_t>> station_aliases = {};
   // Wires between slaves' entries (signal_wire.hpp).
   std::vector<SignalWire> wires = {};
+  // Where each slave's port 0 is cabled (topology.hpp), per slave in the order given; empty: the
+  // line, slave i's port 1 to slave i+1.
+  Topology topology = {};
 };
 
 class Network {
 public:
   // Throws profile::ProfileError for an unknown product or a broken profile (esi::EsiError, one,
-  // for a broken or ambiguous ESI file), std::invalid_argument for a wire whose ends do not exist
-  // or differ in size. `clock` must
+  // for a broken or ambiguous ESI file), std::invalid_argument for a topology the products' ports
+  // cannot make (validate()) or a wire whose ends do not exist or differ in size. `clock` must
   // outlive the network (the ESCs read it).
   Network(std::span<const std::string> product_ids, const Clock& clock,
           const NetworkOptions& options = {});

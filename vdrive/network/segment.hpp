@@ -1,65 +1,128 @@
 #pragma once
-// The line of slaves on one link, as on a real cable: a frame enters slave 1 at port 0, is
-// processed there, leaves port 1 to slave 2, ... and the last open port loops it back through
-// every slave's port 1 -> port 0 path to the master. Each hop adds a configurable delay, which the
-// DC receive times reflect:
-//   slave i (0-based) sees the frame at port 0 at rx_time + i * hop_delay;
-//   if slave k is where the frame turns (last slave, or port 1 not forwarding: closed by DL
-//   control 0x0100 or no link), slave i < k sees it again at port 1 at rx_time + (2k - i) * hop.
-// The turning point is decided before the frame is processed, as the silicon forwards a frame
-// while still receiving it (a DL control write in this frame acts on the next one).
+// The slaves on one link, cabled as a tree as on real EtherCAT (topology.hpp; by default the
+// line: slave i's port 1 to slave i+1's port 0). A frame enters the root slave at port 0 and is
+// processed there; each ESC then sends it out of its ports in the order 0 -> 3 -> 1 -> 2 -> 0
+// (ETG.1000.4, ESC datasheets "frame processing order"): out of port 3 into the subtree cabled
+// there, back in at port 3, out of port 1, and so on, and finally out of port 0 back towards the
+// master. A port that does not forward (not implemented, no link, closed by DL control 0x0100)
+// is looped back inside the ESC and skipped. So every ESC processes the frame once, on its port-0
+// arrival, depth first; the master's auto-increment positions count ESCs in that order.
+//
+// Timing: each hop (cable plus forwarding) adds the configurable hop delay, either direction.
+// An ESC sees the frame at port 0 when it arrives; at port N when it comes back from the
+// subtree behind port N (esc::FrameTiming), which the DC receive time latch (0x0900) reports.
+// In the line, slave i sees the frame at port 0 at rx_time + i * hop; if slave k is where the
+// frame turns, slave i < k sees it again at port 1 at rx_time + (2k - i) * hop.
+// The whole path is decided before the frame is processed, as the silicon forwards a frame while
+// still receiving it (a DL control write in this frame acts on the next one).
 // On the way back the first slave sets bit 1 of the source MAC's first byte (0x02), as ESCs do.
 //
 // Ethernet: destination and source MAC, EtherType 0x88A4, optionally behind one 802.1Q tag.
 // Non-EtherCAT frames, frames an ESC destroys (malformed), and frames that meet a cut cable
-// before slave 1 do not come back. Allocates nothing per frame; single-threaded.
+// before the root slave do not come back. Allocates nothing per frame; single-threaded.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "common/clock.hpp"
 #include "esc_model/esc.hpp"
+#include "esc_model/frame_timing.hpp"
+#include "vdrive/network/topology.hpp"
 
 namespace vdrive::network {
 
 class Segment {
 public:
-  explicit Segment(Nanos hop_delay = 500);  // ns per slave, each direction (cable + ESC forwarding)
+  explicit Segment(Nanos hop_delay = 500);  // ns per hop, each direction (cable + ESC forwarding)
 
-  void append(esc::Esc& esc);   // slaves in cable order; call before the first frame
+  // Slaves in the order they are numbered (0-based); call before set_topology and before the
+  // first frame. Appending makes the topology the line again.
+  void append(esc::Esc& esc);
   std::size_t size() const { return slaves_.size(); }
   esc::Esc& slave(std::size_t i) { return *slaves_[i]; }
   Nanos hop_delay() const { return hop_delay_; }
 
-  // Cable break between slave i and i+1 (i = -1: between master and slave 1). Updates port
-  // links on both sides (Esc::set_links). Out-of-range positions are ignored.
+  // Cables the appended slaves as `topology` says (empty: the line), all cables connected.
+  // Throws std::invalid_argument (validate()) for a topology that cannot be cabled with these
+  // ESCs' ports.
+  void set_topology(const Topology& topology);
+  // Where slave i's port 0 is cabled (the line spelled out if no topology was set).
+  const Uplink& uplink(std::size_t slave) const { return uplinks_[slave]; }
+  // The slave whose port 0 is cabled to port `port` of `slave`, or -1 if none; for port 0, the
+  // slave itself (its own way in).
+  int cabled_at(std::size_t slave, int port) const;
+
+  // Cables are named by the slave they lead into (port 0 side): the cable into slave i comes from
+  // the master or from a port of its parent. A broken cable takes both ends' links down
+  // (Esc::set_links); the ESC on the parent side closes that port (auto loop control) and turns
+  // the frame there, so the subtree behind it sees nothing.
+  //
+  // The line's numbering, kept for it: the cable into slave after_slave + 1 (in the line, the one
+  // between slave after_slave and the next; -1: from the master into slave 0). Out-of-range
+  // positions are ignored.
   void set_cable(int after_slave, bool connected);
   bool cable_connected(int after_slave) const;
+  // The cable at port `port` (0..3) of `slave`: port 0 is the cable into it, ports 1..3 those
+  // to the slaves behind it. Returns false (and changes nothing) if nothing is cabled there.
+  bool set_port_cable(std::size_t slave, int port, bool connected);
+  bool port_cable_connected(std::size_t slave, int port) const;
 
-  // Processes one Ethernet frame in place as the line would; `rx_time` is when the master's frame
-  // reached slave 1. Returns true if the frame comes back to the master (then send it), false if
-  // it was destroyed (malformed, or the line is cut before slave 1). Non-EtherCAT frames: false.
-  // Allocates nothing.
+  // Processes one Ethernet frame in place as the cabled slaves would; `rx_time` is when the
+  // master's frame reached the root slave. Returns true if the frame comes back to the master
+  // (then send it), false if it was destroyed (malformed, or the cable into the root is cut).
+  // Non-EtherCAT frames: false. Allocates nothing.
   bool process(std::span<std::uint8_t> ethernet_frame, Nanos rx_time);
 
-  // A frame that left the master with a wrong FCS (corrupted on the cable into slave 1, see
+  // A frame that left the master with a wrong FCS (corrupted on the cable into the root, see
   // fault::WireImpairment): its content does not matter, as no ESC executes it. As the silicon
-  // does, slave 1 counts an invalid frame at port 0 (0x0300) and forwards it marked; every other
-  // slave it passes counts a forwarded RX error (0x0308 at port 0 on the way out, 0x0309 at
-  // port 1 on the way back). It never comes back to the master (its NIC drops a bad FCS); it
-  // counts in dropped(). A cable cut before slave 1: nobody sees it. Any frame counts (the FCS
+  // does, the root counts an invalid frame at port 0 (0x0300) and forwards it marked; every other
+  // ESC counts a forwarded RX error (0x0308 + port) at port 0 on the way in and at each port the
+  // frame comes back through. It never comes back to the master (its NIC drops a bad FCS); it
+  // counts in dropped(). A cable cut before the root: nobody sees it. Any frame counts (the FCS
   // is checked before the EtherType matters); its bytes and time change nothing. Allocates nothing.
   void process_corrupted(std::span<const std::uint8_t> ethernet_frame, Nanos rx_time);
 
-  // Frames that did not come back (not EtherCAT, destroyed by an ESC, line cut at slave 1).
+  // Frames that did not come back (not EtherCAT, destroyed by an ESC, cable into the root cut).
   std::uint64_t dropped() const { return dropped_; }
 
 private:
+  // One ESC on the way down the tree while a frame's path is planned: which of its downstream
+  // ports (kDownstreamPortOrder) comes next.
+  struct Walk {
+    std::uint32_t slave;
+    std::uint32_t next;
+  };
+  // A slave's cabled downstream ports in port order, so that a frame's walk looks only at ports
+  // with a cable (in the line: one per slave).
+  struct Branch {
+    std::int32_t child;
+    std::int32_t port;
+  };
+  struct Branches {
+    std::array<Branch, 3> in_order;
+    std::uint32_t count;
+  };
+  void cable(const Topology& topology);
   void update_links();
-  std::size_t turning_slave() const;
+  // The frame's path and timing before any ESC processes it: fills order_ (the ESCs in visiting
+  // order) and timings_ (per slave); returns how many ESCs the frame visits.
+  std::size_t plan(Nanos rx_time);
+  // The line's walk needs only where the frame turns.
+  std::size_t line_turn() const;
+
   Nanos hop_delay_;
   std::vector<esc::Esc*> slaves_;
-  std::vector<std::uint8_t> cable_ok_;  // cable_ok_[i] != 0: cable into slave i (from master or slave i-1)
+  std::vector<std::uint8_t> cable_ok_;               // cable_ok_[i] != 0: the cable into slave i
+  std::vector<Uplink> uplinks_;                      // per slave, the line filled in
+  std::vector<std::array<std::int32_t, 4>> children_;  // children_[s][p]: slave on port p, or -1
+  std::vector<Branches> branches_;                   // the same in port order 3, 1, 2
+  std::int32_t root_ = -1;                           // the slave on the master's cable
+  bool line_ = true;                                 // cabled as the line: the line's own walk
+  // Per-frame scratch, sized when slaves are cabled so that frames allocate nothing.
+  std::vector<esc::FrameTiming> timings_;
+  std::vector<std::uint32_t> order_;
+  std::vector<Walk> walk_;
   std::uint64_t dropped_ = 0;
 };
 
