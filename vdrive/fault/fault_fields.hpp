@@ -1,10 +1,10 @@
 #pragma once
 // The fields of a fault as users write them, in scenario files and in the runtime control
-// protocol alike: `kind`, then `slave`, `port`, `duration`, `direction`, `probability`, `delay`, `count`,
-// `abort_code`, `code`, `position`, `load_scale`, `force` as the kind takes them. Which fields a
-// kind takes, which it needs, their defaults (FaultSpec's), ranges and names live here only; each
-// format supplies a FaultFieldSource that reads one named field in its own syntax and reports
-// errors in its own form (a YAML file's line and column, a JSON request's field).
+// protocol alike: `kind`, then `slave`, `port`, `duration`, `direction`, `probability`, `delay`,
+// `count`, `abort_code`, `code`, `position`, `load_scale`, `force` as the kind takes them. Which
+// fields a kind takes, which it needs, their defaults (FaultSpec's), ranges and names live here
+// only; each format supplies a FaultFieldSource that reads one named field in its own syntax and
+// reports errors in its own form (a YAML file's line and column, a JSON request's field).
 #include <cstdint>
 #include <string>
 #include <string_view>

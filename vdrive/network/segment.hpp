@@ -15,7 +15,7 @@
 // frame turns, slave i < k sees it again at port 1 at rx_time + (2k - i) * hop.
 // The whole path is decided before the frame is processed, as the silicon forwards a frame while
 // still receiving it (a DL control write in this frame acts on the next one).
-// On the way back the first slave sets bit 1 of the source MAC's first byte (0x02), as ESCs do.
+// On the way back the root slave sets bit 1 of the source MAC's first byte (0x02), as ESCs do.
 //
 // Ethernet: destination and source MAC, EtherType 0x88A4, optionally behind one 802.1Q tag.
 // Non-EtherCAT frames, frames an ESC destroys (malformed), and frames that meet a cut cable

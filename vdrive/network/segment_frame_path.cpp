@@ -1,8 +1,9 @@
 // The frame's path through the cabled slaves and its timing (segment.hpp): a tree walk that
 // plans the path before any ESC processes the frame, and the line's own walk, which needs none
 // of the tree's bookkeeping (the common case: every built-in product has two ports).
-#include "ethercat/datagram.hpp"
 #include "vdrive/network/segment.hpp"
+
+#include "ethercat/datagram.hpp"
 
 namespace vdrive::network {
 namespace {
