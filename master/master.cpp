@@ -132,6 +132,7 @@ AlStatus Master::read_al_status(std::size_t index) {
 
 bool Master::acknowledge_error(std::size_t index) {
   Slave& s = slaves_.at(index);
+  if (s.al.error && s.al.status_code != 0) s.refused_code = s.al.status_code;
   const auto value = static_cast<std::uint16_t>(s.al.state | reg::kAlAcknowledge);
   return is(transport_.fpwr_value<std::uint16_t>(s.station, reg::kAlControl, value), 1);
 }
@@ -230,6 +231,8 @@ std::string describe(const Slave& s) {
                                  s.info.name.empty() ? "(no name)" : s.info.name, to_string(s.state()));
   if (s.al.error) {
     text += fmt::format("  error 0x{:04X} ({})", s.al.status_code, al_status_code_text(s.al.status_code));
+  } else if (s.refused_code != 0) {
+    text += fmt::format("  last refused with 0x{:04X} ({})", s.refused_code, al_status_code_text(s.refused_code));
   }
   return text;
 }

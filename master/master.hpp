@@ -58,6 +58,9 @@ struct Slave {
   // them before request_state() (e.g. to test a slave's mailbox checks).
   std::array<SmSetting, 2> mailbox_sm{};
   AlStatus al;                         // last AL status read
+  // The AL status code of the last error the master acknowledged (why a state was refused), kept
+  // because acknowledging clears it on the slave; 0 = none since scan().
+  std::uint16_t refused_code = 0;
   std::uint8_t mailbox_counter = 0;    // last mailbox counter sent (1..7), shared by its clients
   SlaveProcessData process_data;       // filled by configure_process_data()
   bool dc_supported = false;           // ESC feature 0x0008 bit 2, read at scan()

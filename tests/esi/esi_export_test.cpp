@@ -305,7 +305,8 @@ TEST(EsiExportEscaping, MarkupInNamesRoundTrips) {
   profile::ProductProfile p = profile::load_profile("ds5c1");
   p.identity.device_name = "A<B> & \"C\" 'D'";
   p.identity.vendor_name = "X&Y <Z>";
-  const auto dict = od::shared_dictionary(p);
+  // Its own dictionary: the shared one of ds5c1 must keep the product's identity for other tests.
+  const auto dict = std::make_shared<const od::Dictionary>(od::Dictionary::load(p));
   const std::string xml = esi::export_esi(p, *dict);
   XMLDocument doc;
   ASSERT_EQ(doc.Parse(xml.c_str(), xml.size()), tinyxml2::XML_SUCCESS) << doc.ErrorStr();

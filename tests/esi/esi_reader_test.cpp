@@ -187,3 +187,34 @@ TEST(EsiReader, AMissingFileIsNamed) {
 }
 
 }  // namespace
+
+namespace {
+
+// SII categories (type, words) from word 40h on.
+std::vector<std::pair<std::uint16_t, std::uint16_t>> categories(const std::vector<std::uint8_t>& sii) {
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> out;
+  for (std::size_t at = 0x80; at + 4 <= sii.size();) {
+    const auto type = static_cast<std::uint16_t>(sii[at] | sii[at + 1] << 8);
+    if (type == 0xFFFF) break;
+    const auto words = static_cast<std::uint16_t>(sii[at + 2] | sii[at + 3] << 8);
+    out.emplace_back(type, words);
+    at += 4 + 2u * words;
+  }
+  return out;
+}
+
+// SOEM and IgH read every PDO of the first TxPDO/RxPDO category: all eight channel PDOs of an input
+// terminal are in one category (8 bytes of PDO header and 8 of entry each: 64 words).
+TEST(EsiSii, AllPdosOfADirectionAreInOneCategory) {
+  const std::string io = std::string(VDRIVE_TEST_PRODUCTS_DIR) + "/esi/io_terminals.xml";
+  const esi::ImportedDevice d = esi::import_device(esi::select_device(esi::read_esi_file(io), esi::parse_device_reference(io + ":0x03f03052")));
+  std::size_t tx = 0;
+  for (const auto& [type, words] : categories(d.sii_image)) {
+    if (type != 50) continue;
+    ++tx;
+    EXPECT_EQ(words, 8 * 16 / 2);
+  }
+  EXPECT_EQ(tx, 1u);
+}
+
+}  // namespace

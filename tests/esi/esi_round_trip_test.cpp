@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "ethercat/little_endian.hpp"
 #include "ethercat/sii.hpp"
 #include "vdrive/esi/esi_export.hpp"
 #include "vdrive/esi/esi_import.hpp"
@@ -101,9 +102,12 @@ TEST_P(EsiRoundTrip, ObjectDictionaryComesBackEntryForEntry) {
       EXPECT_EQ(f.access, e.access) << at;
       EXPECT_EQ(f.min, e.min) << at;
       EXPECT_EQ(f.max, e.max) << at;
-      if (e.index != 0x1018 || e.subindex != 4) {  // the serial number is per unit
-        EXPECT_EQ(f.default_value, e.default_value) << at;
-      }
+      // The serial number is per unit; the sync parameters 1C32h/1C33h report are the firmware's
+      // power-on values, not the table's (SyncParametersAreWhatTheProductReports).
+      const bool serial = e.index == 0x1018 && e.subindex == 4;
+      const bool reported = (e.index == 0x1C32 || e.index == 0x1C33) &&
+                            (e.subindex == 0 || e.subindex == 4 || e.subindex == 5 || e.subindex == 6 || e.subindex == 9);
+      if (!serial && !reported) EXPECT_EQ(f.default_value, e.default_value) << at;
       ++compared;
     }
   }
@@ -139,6 +143,31 @@ TEST_P(EsiRoundTrip, DefaultPdoMappingComesBack) {
     EXPECT_EQ(p.pdo_rules.rx_objects[i].index, builtin_.pdo_rules.rx_objects[i].index);
     EXPECT_EQ(p.pdo_rules.rx_objects[i].fixed, builtin_.pdo_rules.rx_objects[i].fixed);
   }
+}
+
+// What a master reads from 1C32h/1C33h 04h-06h after power-on (the built-in firmware fills them from
+// the product's sync settings) is what the ESI gives and what the imported device reports.
+TEST_P(EsiRoundTrip, SyncParametersAreWhatTheProductReports) {
+  const esi::ImportedDevice imported = round_trip();
+  const profile::SyncSpec& a = builtin_.sync;
+  const profile::SyncSpec& b = imported.profile.sync;
+  for (const auto& [x, y] : {std::pair{&a.sm2, &b.sm2}, std::pair{&a.sm3, &b.sm3}}) {
+    EXPECT_EQ(y->supported_sync_types, x->supported_sync_types);
+    EXPECT_EQ(y->min_cycle_time_ns, x->min_cycle_time_ns);
+    EXPECT_EQ(y->calc_and_copy_time_ns, x->calc_and_copy_time_ns);
+    EXPECT_EQ(y->delay_time_ns, x->delay_time_ns);
+  }
+  if (a.sm2.min_cycle_time_ns != 0) EXPECT_EQ(b.cycle_min_ns, a.sm2.min_cycle_time_ns);
+}
+
+TEST_P(EsiRoundTrip, TheSiiImageGivesTheSerialNumber) {
+  esi::EsiOptions options;
+  options.eeprom_image = true;
+  const esi::ImportedDevice imported = round_trip(options);
+  EXPECT_EQ(imported.profile.identity.serial, builtin_.identity.serial);
+  const od::EntryDesc* serial = imported.dictionary->find(0x1018, 4);
+  ASSERT_NE(serial, nullptr);
+  EXPECT_EQ(ecat::get_le32(serial->default_value, 0), builtin_.identity.serial);
 }
 
 TEST_P(EsiRoundTrip, ACia402DriveGetsTheGenericPersonality) {

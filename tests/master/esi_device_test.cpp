@@ -6,6 +6,7 @@
 #include <string>
 
 #include "master/master.hpp"
+#include "master/process_data.hpp"
 #include "master/op_run.hpp"
 #include "tests/master/csp_sine_run.hpp"
 #include "tests/master/virtual_line.hpp"
@@ -52,6 +53,34 @@ TEST(EsiDevice, MasterTakesItToOpAndItFollowsInCsp) {
   EXPECT_GE(r.samples, 900u) << describe(r);
   EXPECT_GT(r.max_following_error, 0) << describe(r) << ": a moving axis lags a little";
   EXPECT_LE(r.max_following_error, r.following_window) << describe(r);
+}
+
+// The file's PDO rules hold: 1600h and 1601h exclude each other, 1A00h is mandatory. An assignment
+// against them is refused at PreOp->SafeOp with the ETG code for the direction.
+std::uint16_t al_code_after_assigning(std::vector<std::uint16_t> rx, std::vector<std::uint16_t> tx) {
+  test::VirtualLine line({kServo});
+  Master master{line, line.clock()};
+  EXPECT_EQ(master.scan(), 1u);
+  OpRunOptions o;
+  o.dc = false;
+  o.cycles = 10;
+  o.mailbox_timeout = 20'000'000;
+  o.preop = [&](Master& m) {
+    assign_pdos(m.sdo(0), 0x1C12, rx);
+    assign_pdos(m.sdo(0), 0x1C13, tx);
+  };
+  const OpRunResult r = run_to_op(master, o);
+  EXPECT_FALSE(r.reached_op);
+  EXPECT_NE(r.error.find("last refused with"), std::string::npos) << r.error;
+  return master.slaves()[0].refused_code;
+}
+
+TEST(EsiDevice, ExcludingPdosAreNotAssignedTogether) {
+  EXPECT_EQ(al_code_after_assigning({0x1600, 0x1601}, {0x1A00}), 0x0025);  // invalid output mapping
+}
+
+TEST(EsiDevice, AMandatoryPdoMustBeAssigned) {
+  EXPECT_EQ(al_code_after_assigning({0x1600}, {}), 0x0024);  // invalid input mapping
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/product_source.hpp"
 #include "vdrive/esi/esi_export.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -35,13 +36,9 @@ void write_file(const std::string& path, const std::string& text) {
 }
 
 void run(const EsiCommandOptions& o) {
-  const std::vector<std::string> known = profile::known_products();
-  if (o.profile_dir.empty() && std::find(known.begin(), known.end(), o.drive) == known.end()) {
-    throw CliError(kExitBadArguments, fmt::format("--drive: unknown product '{}' (known: {})", o.drive,
-                                                  known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
-  }
-  const profile::ProductProfile p = profile::load_profile(o.drive, o.profile_dir);
-  const std::shared_ptr<const od::Dictionary> dict = od::shared_dictionary(p, o.profile_dir);
+  const ProductSource source = load_product_source(o.drive, o.profile_dir);
+  const profile::ProductProfile& p = source.profile;
+  const std::shared_ptr<const od::Dictionary> dict = source.dictionary;
   esi::EsiOptions options;
   options.with_dictionary = !o.without_od;
   options.eeprom_image = o.eeprom_image;

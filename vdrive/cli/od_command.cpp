@@ -13,6 +13,7 @@
 
 #include "ethercat/little_endian.hpp"
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/product_source.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
@@ -131,15 +132,11 @@ void print_json(const std::string& product, const std::vector<const od::EntryDes
 }
 
 void run(const OdCommandOptions& o) {
-  const std::vector<std::string> known = profile::known_products();
-  if (o.profile_dir.empty() && std::find(known.begin(), known.end(), o.drive) == known.end()) {
-    throw CliError(kExitBadArguments, fmt::format("--drive: unknown product '{}' (known: {})", o.drive,
-                                                  known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
-  }
+  const ProductSource source = load_product_source(o.drive, o.profile_dir);
   const std::optional<std::uint16_t> only =
       o.index.empty() ? std::nullopt : std::optional<std::uint16_t>(parse_index(o.index));
-  const profile::ProductProfile p = profile::load_profile(o.drive, o.profile_dir);
-  const std::shared_ptr<const od::Dictionary> dict = od::shared_dictionary(p, o.profile_dir);
+  const profile::ProductProfile& p = source.profile;
+  const std::shared_ptr<const od::Dictionary> dict = source.dictionary;
 
   std::vector<const od::EntryDesc*> entries;
   for (const od::ObjectDesc& object : dict->objects()) {

@@ -29,6 +29,7 @@
 #include "plant/plant_yaml.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/esi/esi_import.hpp"
+#include "vdrive/machine/network_file.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/runtime/loop_waker.hpp"
@@ -44,6 +45,7 @@ struct RunOptions {
   std::string iface;
   std::string tap;
   std::vector<std::string> drives;
+  std::string network_file;         // --network: the slaves, topology, aliases and wires of a network file
   Nanos hop_delay = 500;
   std::string profile_dir;
   bool no_qdisc_bypass = false;
@@ -59,6 +61,7 @@ struct RunOptions {
   bool no_control = false;
   StatusMode status = StatusMode::automatic;  // --status / --no-status
   RunTelemetryOptions telemetry;   // --telemetry: DDS telemetry (docs/telemetry.md)
+  machine::NetworkFile network;    // read from network_file
 };
 
 // Runtime control: a request line from the socket's thread -> the loop -> a reply line.
@@ -185,7 +188,35 @@ std::unique_ptr<link::Link> open_link(const RunOptions& o) {
   }
 }
 
-void run(const RunOptions& o) {
+// The rest of a network file: per-slave plants (read as --plant reads them), station aliases,
+// topology and wires.
+void apply_network_file(const RunOptions& o, network::NetworkOptions& options) {
+  const machine::NetworkFile& f = o.network;
+  options.plants.assign(f.slaves.size(), std::nullopt);
+  options.station_aliases.assign(f.slaves.size(), std::nullopt);
+  for (std::size_t i = 0; i < f.slaves.size(); ++i) {
+    const machine::NetworkSlave& s = f.slaves[i];
+    options.station_aliases[i] = s.alias;
+    if (s.plant_file.empty()) continue;
+    RunOptions one = o;
+    one.plants = {fmt::format("{}:{}", i, s.plant_file)};
+    options.plants[i] = load_plants(one)[i];
+  }
+  options.topology = f.topology;
+  options.wires = f.wires;
+}
+
+void run(RunOptions o) {
+  if (!o.network_file.empty()) {
+    if (!o.plants.empty()) throw CliError(kExitBadArguments, "--plant: with --network, a slave's plant is in the network file");
+    try {
+      o.network = machine::load_network_file(o.network_file, o.profile_dir);
+    } catch (const machine::NetworkFileError& e) {
+      throw CliError(kExitBadArguments, e.what());
+    }
+    for (const machine::NetworkSlave& s : o.network.slaves) o.drives.push_back(s.device);
+  }
+  if (o.drives.empty()) throw CliError(kExitBadArguments, "no slaves: give --drive (repeat) or --network FILE");
   check_products(o);
   if (o.cpu >= 0 && !runtime::cpu_is_allowed(o.cpu))
     throw CliError(kExitBadArguments, fmt::format("--cpu {}: no such CPU, or not one this process may use", o.cpu));
@@ -199,7 +230,10 @@ void run(const RunOptions& o) {
   try {
     network::NetworkOptions options{o.hop_delay, o.profile_dir};
     options.plants = load_plants(o);
+    if (!o.network_file.empty()) apply_network_file(o, options);
     network = std::make_unique<network::Network>(o.drives, clock, options);
+  } catch (const std::invalid_argument& e) {
+    throw CliError(kExitBadArguments, fmt::format("{}", e.what()));
   } catch (const profile::ProfileError& e) {
     // With --profile-dir an unknown id is the user's mistake; otherwise the build is broken.
     throw CliError(o.profile_dir.empty() ? kExitFailure : kExitBadArguments, e.what());
@@ -225,7 +259,7 @@ void run(const RunOptions& o) {
   const std::unique_ptr<control::ControlServer> control = o.no_control ? nullptr : open_control(o, faults);
 
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
-  spdlog::info("serving {} drive(s) on {}: {} (hop delay {} ns{}); SIGINT/SIGTERM stops",
+  spdlog::info("serving {} slave(s) on {}: {} (hop delay {} ns{}); SIGINT/SIGTERM stops",
                o.drives.size(), where, fmt::join(o.drives, ", "), o.hop_delay,
                o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
   if (control) spdlog::info("fault control on {}", control->path());
@@ -269,10 +303,13 @@ void add_run_command(CLI::App& app) {
       cmd->add_option("--iface,-i", o->iface, "Interface the master is cabled to (raw socket)");
   CLI::Option* tap = cmd->add_option("--tap", o->tap, "Create/attach TAP device NAME and serve on it");
   iface->excludes(tap);
-  cmd->add_option("--drive,-d", o->drives,
+  CLI::Option* drive = cmd->add_option("--drive,-d", o->drives,
                   "Product id of the next drive in cable order, or an ESI device FILE.xml[:PRODUCT[:REVISION]] (repeat)")
-      ->required()
       ->take_all();
+  CLI::Option* network_file = cmd->add_option("--network", o->network_file,
+                  "Serve the network FILE describes (slaves, topology, aliases, plants, wires; docs/networks.md)");
+  drive->excludes(network_file);
+  network_file->excludes(drive);
   cmd->add_option("--plant", o->plants,
                   "N:FILE: slave N (cable order, from 0) moves the plant in FILE (docs/plant.md); repeat per slave")
       ->take_all();

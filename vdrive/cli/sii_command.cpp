@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/product_source.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/profile/sii_image.hpp"
 
@@ -45,14 +46,9 @@ void print_hex(const std::vector<std::uint8_t>& bytes) {
 }
 
 void run(const SiiCommandOptions& o) {
-  const std::vector<std::string> known = profile::known_products();
-  if (o.profile_dir.empty() && std::find(known.begin(), known.end(), o.drive) == known.end()) {
-    throw CliError(kExitBadArguments, fmt::format("--drive: unknown product '{}' (known: {})", o.drive,
-                                                  known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
-  }
   if (o.output.empty() == !o.hex)
     throw CliError(kExitBadArguments, "give either -o FILE (binary image) or --hex (hex dump on stdout)");
-  const std::vector<std::uint8_t> image = profile::build_sii_image(profile::load_profile(o.drive, o.profile_dir));
+  const std::vector<std::uint8_t> image = load_product_source(o.drive, o.profile_dir).sii_image;
   if (o.hex) print_hex(image);
   else write_file(o.output, image);
 }

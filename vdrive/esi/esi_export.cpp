@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -214,6 +215,34 @@ void write_eeprom(XmlWriter& xml, const ProductProfile& p, bool whole_image) {
   xml.close();
 }
 
+// 1C32h/1C33h as a master reads them after power-on: the firmware fills the sync parameters the
+// product reports (04h types supported, 05h minimum cycle, 06h calc-and-copy, 09h delay) from its
+// sync settings, not from the dictionary's table defaults (firmware/sync/sync_objects.cpp). The ESI
+// gives those values, so a configurator and an SDO upload agree.
+od::Dictionary reported_values(const ProductProfile& p, const od::Dictionary& d) {
+  std::vector<od::ObjectDesc> objects(d.objects().begin(), d.objects().end());
+  for (od::ObjectDesc& o : objects) {
+    if (o.index != 0x1C32 && o.index != 0x1C33) continue;
+    const profile::SyncObjectSpec& s = o.index == 0x1C32 ? p.sync.sm2 : p.sync.sm3;
+    const std::uint8_t max = o.max_subindex();
+    for (od::EntryDesc& e : o.entries) {
+      std::optional<std::uint64_t> v;
+      switch (e.subindex) {
+        case 0x00: v = max; break;
+        case 0x04: v = s.supported_sync_types; break;
+        case 0x05: v = s.min_cycle_time_ns; break;
+        case 0x06: v = s.calc_and_copy_time_ns; break;
+        case 0x09: v = s.delay_time_ns; break;
+        default: break;
+      }
+      if (!v) continue;
+      for (std::size_t i = 0; i < e.default_value.size(); ++i)
+        e.default_value[i] = static_cast<std::uint8_t>(i < 8 ? *v >> (8 * i) : 0);
+    }
+  }
+  return od::Dictionary::from_objects(std::move(objects), p, /*complete_pdo_objects=*/false);
+}
+
 }  // namespace
 
 std::string export_esi(const ProductProfile& p, const od::Dictionary& d, const EsiOptions& options) {
@@ -264,7 +293,7 @@ std::string export_esi(const ProductProfile& p, const od::Dictionary& d, const E
   xml.open("Profile");
   xml.element("ProfileNo", std::to_string(id.device_type & 0xFFFF));
   if ((id.device_type >> 16) != 0) xml.element("AddInfo", std::to_string(id.device_type >> 16));
-  if (options.with_dictionary && !d.objects().empty()) write_dictionary(xml, d);
+  if (options.with_dictionary && !d.objects().empty()) write_dictionary(xml, reported_values(p, d));
   xml.close();
 
   // FMMUs in the order the SII FMMU category declares them.

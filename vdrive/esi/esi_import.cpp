@@ -225,6 +225,9 @@ void synchronisation(const EsiDevice& d, ProductProfile& p) {
                                s.accepted_dc_activation.end())
       s.accepted_dc_activation.push_back(activation);
   }
+  // A device without DC op modes does not look at the DC activation (simple I/O has no firmware to
+  // refuse it): any pattern is taken, and it keeps running on its own.
+  if (d.op_modes.empty()) s.accepted_dc_activation = {0x00, 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07};
   // Any cycle time from 1C32h-05h (minimum cycle time) up; 1 ns steps.
   s.cycle_times_ns.clear();
   s.cycle_step_ns = 1;
@@ -314,6 +317,10 @@ ImportedDevice import_device(const EsiDevice& d) {
   pdos(d, p);
   synchronisation(d, p);
   if (is_cia402_drive(d.profile_no, d.objects)) apply_generic_cia402(p, d.objects);
+  // The file's own SII image also gives the unit's serial number (words 0Eh-0Fh), which 1018h-04h
+  // then reports as the SII does.
+  if (d.eeprom_data.size() >= 2 * ecat::sii::kWordSerial + 4)
+    p.identity.serial = ecat::get_le32(d.eeprom_data, 2 * ecat::sii::kWordSerial);
   out.sii_image = sii_image(d, p);
   // PDO objects the file leaves without values get the default assignment and mapping of its PDOs,
   // as the device's firmware would have them (od/default_pdo_objects.hpp).

@@ -104,6 +104,8 @@ void apply_generic_cia402(profile::ProductProfile& p, const std::vector<od::Obje
   d.alarms.overvoltage = "3210h";
   d.alarms.undervoltage = "3220h";
   d.alarms.position_command_jump = "8611h";
+  // A dictionary with 10F3h (ETG.1020 diagnosis history) gets the history kept there.
+  if (find_entry(objects, 0x10F3, 0) != nullptr) d.alarm_rules.history = profile::AlarmHistoryKind::DiagnosisHistory;
   p.drive = d;
   p.alarms = {
       alarm("8611h", "Following error", 0x8611, AlarmReaction::Deceleration),

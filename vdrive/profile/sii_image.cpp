@@ -189,17 +189,25 @@ std::vector<std::uint8_t> build_sii_image(const ProductProfile& p) {
   strings.index_of(p.identity.device_name);  // string 1: the device name (1008h)
   strings.index_of(p.identity.vendor_name);
   Bytes gen = general(p, strings);
-  std::vector<Bytes> tx, rx;
-  for (const auto& t : p.tx_pdos) tx.push_back(pdo(t, strings));
-  for (const auto& r : p.rx_pdos) rx.push_back(pdo(r, strings));
+  // One TxPDO and one RxPDO category, each listing its PDOs one after the other (ETG.2010; SOEM
+  // and IgH read every PDO of the first category of each kind).
+  Bytes tx, rx;
+  for (const auto& t : p.tx_pdos) {
+    Bytes b = pdo(t, strings);
+    tx.data().insert(tx.data().end(), b.data().begin(), b.data().end());
+  }
+  for (const auto& r : p.rx_pdos) {
+    Bytes b = pdo(r, strings);
+    rx.data().insert(rx.data().end(), b.data().begin(), b.data().end());
+  }
   Bytes str;
   strings.write(str);
   category(image, Category::Strings, std::move(str), 0x00);
   category(image, Category::General, std::move(gen), 0x00);
   category(image, Category::Fmmu, fmmus(p), 0xFF);
   category(image, Category::SyncManager, sync_managers(p), 0x00);
-  for (auto& t : tx) category(image, Category::TxPdo, std::move(t), 0x00);
-  for (auto& r : rx) category(image, Category::RxPdo, std::move(r), 0x00);
+  if (!p.tx_pdos.empty()) category(image, Category::TxPdo, std::move(tx), 0x00);
+  if (!p.rx_pdos.empty()) category(image, Category::RxPdo, std::move(rx), 0x00);
   image.u16(static_cast<std::uint16_t>(Category::End));
 
   auto& bytes = image.data();

@@ -6,6 +6,7 @@
 
 #include "ethercat/al_status_code.hpp"
 #include "vdrive/firmware/pdi.hpp"
+#include "vdrive/firmware/pdo/pdo_assignment_rules.hpp"
 #include "vdrive/firmware/pdo/pdo_write_rules.hpp"
 #include "vdrive/firmware/pdo/process_data_sm_check.hpp"
 #include "vdrive/firmware/pdo/watchdog_setting_check.hpp"
@@ -172,6 +173,11 @@ CheckResult ProcessDataModule::check_preop_to_safeop() {
   if (!tx_map_.ok()) return {code_or(codes_.invalid_input_mapping, kEtgInputMapping), ecat::AlState::PreOp};
   resolve(ctx_.objects, Direction::Rx, limits_.rx, rx_map_);
   if (!rx_map_.ok()) return {code_or(codes_.invalid_output_mapping, kEtgOutputMapping), ecat::AlState::PreOp};
+  // An assignment against the device's ESI rules (a mandatory PDO left out, two excluding PDOs).
+  if (check_assignment_rules(ctx_.objects, kTxAssign, ctx_.profile.pdo_rules.tx_objects) != AssignmentFault::Ok)
+    return {code_or(codes_.invalid_input_mapping, kEtgInputMapping), ecat::AlState::PreOp};
+  if (check_assignment_rules(ctx_.objects, kRxAssign, ctx_.profile.pdo_rules.rx_objects) != AssignmentFault::Ok)
+    return {code_or(codes_.invalid_output_mapping, kEtgOutputMapping), ecat::AlState::PreOp};
 
   for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
   const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));

@@ -1,0 +1,95 @@
+// Network files: a bench described once (tests/products/networks/bench.yaml: a coupler with two
+// terminals on its E-bus port and an ESI drive on its second port, a loopback wire), read into the
+// slaves, topology, aliases and wires the network is built from; mistakes named by file and line.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "vdrive/machine/network_file.hpp"
+
+namespace {
+
+using namespace vdrive;
+
+const std::string kProducts = VDRIVE_TEST_PRODUCTS_DIR;
+
+std::string error_of(const std::string& text) {
+  try {
+    machine::parse_network_file(text, "n.yaml", kProducts + "/networks");
+  } catch (const machine::NetworkFileError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(NetworkFile, ReadsTheBench) {
+  const machine::NetworkFile f = machine::load_network_file(kProducts + "/networks/bench.yaml");
+  ASSERT_EQ(f.slaves.size(), 4u);
+  EXPECT_EQ(f.slaves[1].name, "servo");
+  EXPECT_EQ(f.slaves[1].device, kProducts + "/esi/generic_servo.xml");
+  EXPECT_EQ(f.slaves[1].alias, 0x0102);
+  ASSERT_EQ(f.topology.uplinks.size(), 4u);
+  EXPECT_EQ(f.topology.uplinks[0].parent, network::Uplink::kMaster);
+  EXPECT_EQ(f.topology.uplinks[1].parent, 0);
+  EXPECT_EQ(f.topology.uplinks[1].port, 1);
+  EXPECT_EQ(f.topology.uplinks[2].port, 3);
+  EXPECT_EQ(f.topology.uplinks[3].parent, 2);
+  // The frame visits the coupler, its E-bus terminals (port 3), then the drive on port 1.
+  EXPECT_EQ(network::visiting_order(f.topology, 4), (std::vector<std::size_t>{0, 2, 3, 1}));
+  ASSERT_EQ(f.wires.size(), 1u);
+  EXPECT_EQ(f.wires[0].from.slave, 3u);
+  EXPECT_EQ(f.wires[0].from.index, 0x7000);
+  EXPECT_EQ(f.wires[0].to.slave, 2u);
+  EXPECT_EQ(f.wires[0].to.subindex, 1);
+}
+
+TEST(NetworkFile, WithoutParentsTheSlavesFormALine) {
+  const machine::NetworkFile f = machine::parse_network_file("slaves:\n  - {device: a6b}\n  - {device: ds5c1}\n", "n.yaml", ".");
+  EXPECT_TRUE(f.topology.uplinks.empty());
+  EXPECT_EQ(f.slaves[1].name, "slave 2");
+}
+
+TEST(NetworkFile, AnUnknownKeyGetsASuggestion) {
+  const std::string e = error_of("slaves:\n  - {device: a6b, parnet: 1}\n");
+  EXPECT_NE(e.find("n.yaml:2: slaves[0]: unknown key 'parnet', did you mean 'parent'?"), std::string::npos) << e;
+}
+
+TEST(NetworkFile, AnUnknownDeviceListsTheProducts) {
+  const std::string e = error_of("slaves:\n  - {device: a7b}\n");
+  EXPECT_NE(e.find("n.yaml:2: slaves[0].device:"), std::string::npos) << e;
+  EXPECT_NE(e.find("a6b"), std::string::npos) << e;
+}
+
+TEST(NetworkFile, ABrokenEsiFileIsNamed) {
+  const std::string e = error_of("slaves:\n  - {device: ../esi/none.xml}\n");
+  EXPECT_NE(e.find("none.xml: cannot read the ESI file"), std::string::npos) << e;
+}
+
+TEST(NetworkFile, AnImpossiblePortIsNamed) {
+  // The A6B has two ports (0 and 1): nothing can be cabled to its port 3.
+  const std::string e = error_of("slaves:\n  - {device: a6b}\n  - {device: ds5c1, parent: 1, port: 3}\n");
+  EXPECT_NE(e.find("n.yaml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("port 3"), std::string::npos) << e;
+}
+
+TEST(NetworkFile, AWireNamesASlaveAndAnEntry) {
+  EXPECT_NE(error_of("slaves:\n  - {name: a, device: a6b}\nwires:\n  - {from: a 0x6041:0, to: b 0x6040:0}\n")
+                .find("n.yaml:4: wires[0].to: no slave 'b'"),
+            std::string::npos);
+  EXPECT_NE(error_of("slaves:\n  - {name: a, device: a6b}\nwires:\n  - {from: a 6041, to: a 0x6040:0}\n")
+                .find("expected SLAVE INDEX:SUBINDEX"),
+            std::string::npos);
+}
+
+TEST(NetworkFile, NamesAreUnique) {
+  const std::string e = error_of("slaves:\n  - {name: x, device: a6b}\n  - {name: x, device: a6b}\n");
+  EXPECT_NE(e.find("n.yaml:3: slaves[1].name: 'x' is used twice"), std::string::npos) << e;
+}
+
+TEST(NetworkFile, NotYamlIsSaidSo) {
+  const std::string e = error_of("slaves: [\n");
+  EXPECT_NE(e.find("n.yaml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("not YAML"), std::string::npos) << e;
+}
+
+}  // namespace

@@ -1,0 +1,111 @@
+// The bench of tests/products/networks/bench.yaml, served as `vdrive run --network` serves it: a
+// coupler with a digital input and output terminal on its E-bus port (3) and an ESI drive on its
+// second port (1), a loopback wire from output channel 1 to input channel 1. The project master
+// scans the tree in the order a frame visits it, takes it to Op with DC at 1 ms, runs a csp sine on
+// the drive and reads back through the input terminal what it writes to the output terminal.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "master/cia402_program.hpp"
+#include "master/master.hpp"
+#include "master/op_run.hpp"
+#include "tests/master/virtual_line.hpp"
+#include "vdrive/machine/network_file.hpp"
+
+namespace vdrive::master {
+namespace {
+
+struct Bench {
+  machine::NetworkFile file = machine::load_network_file(std::string(VDRIVE_TEST_PRODUCTS_DIR) + "/networks/bench.yaml");
+  std::vector<std::string> devices() const {
+    std::vector<std::string> d;
+    for (const machine::NetworkSlave& s : file.slaves) d.push_back(s.device);
+    return d;
+  }
+  network::NetworkOptions options() const {
+    network::NetworkOptions o;
+    o.topology = file.topology;
+    o.wires = file.wires;
+    for (const machine::NetworkSlave& s : file.slaves) o.station_aliases.push_back(s.alias);
+    return o;
+  }
+};
+
+TEST(NetworkBench, TheMasterScansTheTreeInFrameOrder) {
+  const Bench bench;
+  test::VirtualLine line(bench.devices(), bench.options());
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 4u);
+  // Coupler, its E-bus terminals (port 3 first), then the drive behind port 1.
+  EXPECT_EQ(master.slaves()[0].info.product_code, 0x044C2C52u);
+  EXPECT_EQ(master.slaves()[1].info.product_code, 0x03F03052u);
+  EXPECT_EQ(master.slaves()[2].info.product_code, 0x07D83052u);
+  EXPECT_EQ(master.slaves()[3].info.product_code, 0x00000402u);
+  EXPECT_EQ(master.slaves()[3].info.alias, 0x0102);
+}
+
+TEST(NetworkBench, OpWithDcTheDriveFollowsAndTheLoopbackReadsBack) {
+  const Bench bench;
+  test::VirtualLine line(bench.devices(), bench.options());
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 4u);
+  master.set_mailbox_timeout(20'000'000);
+
+  SineProgramOptions sine;
+  sine.cycle = 1'000'000;
+  sine.frequency_hz = 1.0;
+  sine.motion = 1'000'000'000;
+  SineProgram program(sine);
+  OpRunOptions options;
+  options.cycle = 1'000'000;
+  options.dc = true;
+  options.drift_frames = 200;
+  options.mailbox_timeout = 20'000'000;
+  program.attach(options);
+  options.cycles = program.cycles_needed(options.cycle);
+
+  // The output terminal's byte and the input terminal's byte in the process image.
+  auto offsets = [&] {
+    std::uint32_t start = UINT32_MAX;
+    for (const Slave& s : master.slaves()) {
+      if (s.process_data.output_bytes) start = std::min(start, s.process_data.output_logical);
+      if (s.process_data.input_bytes) start = std::min(start, s.process_data.input_logical);
+    }
+    return std::pair{master.slaves()[2].process_data.output_logical - start,
+                     master.slaves()[1].process_data.input_logical - start};
+  };
+  std::uint64_t cycle = 0, matched = 0, compared = 0;
+  std::uint8_t written = 0;
+  const auto sine_outputs = options.outputs;
+  options.outputs = [&](std::span<std::uint8_t> image) {
+    sine_outputs(image);
+    written = static_cast<std::uint8_t>((++cycle / 50) & 1);  // channel 1 toggles every 50 cycles
+    image[offsets().first] = written;
+  };
+  const auto sine_inputs = options.inputs;
+  options.inputs = [&](std::span<std::uint8_t> image) {
+    sine_inputs(image);
+    // Outputs act in Op only (after the Safe-Op cycles); then a few cycles for each change to arrive.
+    if (cycle <= options.safeop_cycles + 50 || cycle % 50 < 5) return;
+    ++compared;
+    if ((image[offsets().second] & 1) == written) ++matched;
+  };
+  const OpRunResult result = run_to_op(master, options);
+  ASSERT_TRUE(result.reached_op) << result.error;
+  EXPECT_EQ(result.stats.wrong_wkc, 0u);
+  EXPECT_EQ(result.left_op, 0u);
+  const std::vector<DriveResult> drives = program.results();
+  ASSERT_EQ(drives.size(), 4u);
+  const DriveResult& r = drives[3];
+  EXPECT_TRUE(r.enabled) << describe(r);
+  EXPECT_FALSE(r.faulted) << describe(r);
+  EXPECT_GE(r.samples, 900u) << describe(r);
+  EXPECT_LE(r.max_following_error, r.following_window) << describe(r);
+  EXPECT_GT(compared, 500u);
+  EXPECT_EQ(matched, compared) << "the input terminal reads what the output terminal drives";
+}
+
+}  // namespace
+}  // namespace vdrive::master

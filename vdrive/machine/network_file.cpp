@@ -1,0 +1,249 @@
+#include "vdrive/machine/network_file.hpp"
+
+#include <fmt/core.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "vdrive/esi/esi_import.hpp"
+#include "vdrive/profile/profile_loader.hpp"
+
+namespace vdrive::machine {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Reader {
+public:
+  Reader(std::string file, std::string base) : file_(std::move(file)), base_(std::move(base)) {}
+
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& what) const {
+    const YAML::Mark m = at.Mark();
+    throw NetworkFileError(m.is_null() ? fmt::format("{}: {}", file_, what)
+                                       : fmt::format("{}:{}: {}", file_, m.line + 1, what));
+  }
+
+  // Keys of `map` must be among `allowed`; a typo gets the nearest key as a suggestion.
+  void only_keys(const YAML::Node& map, const std::string& where, const std::vector<std::string>& allowed) const {
+    for (const auto& kv : map) {
+      const std::string key = kv.first.Scalar();
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+      std::string best;
+      std::size_t best_distance = 3;
+      for (const std::string& a : allowed)
+        if (const std::size_t d = distance(key, a); d < best_distance) best = a, best_distance = d;
+      fail(kv.first, fmt::format("{}: unknown key '{}'{} (keys: {})", where, key,
+                                 best.empty() ? "" : fmt::format(", did you mean '{}'?", best), join(allowed)));
+    }
+  }
+
+  std::string path(const std::string& relative) const {
+    if (relative.empty() || fs::path(relative).is_absolute()) return relative;
+    return (fs::path(base_) / relative).lexically_normal().string();
+  }
+
+  const std::string& file() const { return file_; }
+
+private:
+  static std::string join(const std::vector<std::string>& v) {
+    std::string s;
+    for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s;
+  }
+  static std::size_t distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j) {
+        const std::size_t up = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+        diagonal = up;
+      }
+    }
+    return row[b.size()];
+  }
+
+  std::string file_, base_;
+};
+
+std::optional<std::uint64_t> unsigned_number(std::string_view s) {
+  int base = 10;
+  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) s.remove_prefix(2), base = 16;
+  std::uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v, base);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+std::uint64_t number(const Reader& r, const YAML::Node& n, const std::string& field, std::uint64_t max) {
+  if (!n.IsScalar()) r.fail(n, fmt::format("{}: expected a number", field));
+  const auto v = unsigned_number(n.Scalar());
+  if (!v) r.fail(n, fmt::format("{}: '{}' is not a number (decimal or 0x hex)", field, n.Scalar()));
+  if (*v > max) r.fail(n, fmt::format("{}: {} is above {}", field, n.Scalar(), max));
+  return *v;
+}
+
+std::string text(const Reader& r, const YAML::Node& n, const std::string& field) {
+  if (!n.IsScalar() || n.Scalar().empty()) r.fail(n, fmt::format("{}: expected a non-empty text", field));
+  return n.Scalar();
+}
+
+// The port descriptor (register 0x0007) of a device, for the topology check.
+std::uint8_t port_descriptor(const std::string& device, const std::string& profile_dir) {
+  if (esi::is_esi_reference(device)) return esi::load_esi_device(device)->profile.esc.port_descriptor;
+  return profile::load_profile(device, profile_dir).esc.port_descriptor;
+}
+
+// A slave by name or 1-based position.
+std::size_t slave_ref(const Reader& r, const YAML::Node& n, const std::string& field, const NetworkFile& f) {
+  const std::string s = text(r, n, field);
+  for (std::size_t i = 0; i < f.slaves.size(); ++i)
+    if (f.slaves[i].name == s) return i;
+  if (const auto v = unsigned_number(s); v && *v >= 1 && *v <= f.slaves.size()) return static_cast<std::size_t>(*v - 1);
+  std::string names;
+  for (const NetworkSlave& sl : f.slaves) names += (names.empty() ? "" : ", ") + sl.name;
+  r.fail(n, fmt::format("{}: no slave '{}' (names: {}; or a position 1-{})", field, s, names, f.slaves.size()));
+}
+
+// "NAME 0x7000:1" -> the slave and entry.
+network::WireEnd wire_end(const Reader& r, const YAML::Node& n, const std::string& field, const NetworkFile& f) {
+  const std::string s = text(r, n, field);
+  const std::size_t space = s.find_last_of(' ');
+  const std::size_t colon = s.rfind(':');
+  if (space == std::string::npos || colon == std::string::npos || colon < space)
+    r.fail(n, fmt::format("{}: '{}': expected SLAVE INDEX:SUBINDEX, e.g. 'do 0x7000:1'", field, s));
+  network::WireEnd end;
+  const std::string name = s.substr(0, space);
+  bool found = false;
+  for (std::size_t i = 0; i < f.slaves.size(); ++i)
+    if (f.slaves[i].name == name) end.slave = i, found = true;
+  if (!found) {
+    const auto v = unsigned_number(name);
+    if (!v || *v < 1 || *v > f.slaves.size()) r.fail(n, fmt::format("{}: no slave '{}'", field, name));
+    end.slave = static_cast<std::size_t>(*v - 1);
+  }
+  const auto index = unsigned_number(s.substr(space + 1, colon - space - 1));
+  const auto sub = unsigned_number(s.substr(colon + 1));
+  if (!index || *index > 0xFFFF || !sub || *sub > 0xFF)
+    r.fail(n, fmt::format("{}: '{}': the entry is INDEX:SUBINDEX, e.g. 0x7000:1", field, s));
+  end.index = static_cast<std::uint16_t>(*index);
+  end.subindex = static_cast<std::uint8_t>(*sub);
+  return end;
+}
+
+}  // namespace
+
+NetworkFile parse_network_file(const std::string& text_in, const std::string& file, const std::string& base_dir,
+                               const std::string& profile_dir) {
+  Reader r(file, base_dir);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text_in);
+  } catch (const YAML::Exception& e) {
+    throw NetworkFileError(fmt::format("{}:{}: not YAML: {}", file, e.mark.line + 1, e.msg));
+  }
+  if (!root.IsMap()) r.fail(root, "expected a mapping with 'slaves' (and 'wires')");
+  r.only_keys(root, "(top level)", {"slaves", "wires"});
+  const YAML::Node slaves = root["slaves"];
+  if (!slaves || !slaves.IsSequence() || slaves.size() == 0) r.fail(root, "slaves: expected a list of at least one slave");
+
+  NetworkFile f;
+  f.file = file;
+  std::set<std::string> names;
+  struct Parent {
+    YAML::Node parent, port;
+  };
+  std::vector<Parent> parents;
+  for (std::size_t i = 0; i < slaves.size(); ++i) {
+    const YAML::Node s = slaves[i];
+    const std::string where = fmt::format("slaves[{}]", i);
+    if (!s.IsMap()) r.fail(s, where + ": expected a mapping with 'device'");
+    r.only_keys(s, where, {"name", "device", "alias", "plant", "parent", "port"});
+    NetworkSlave sl;
+    sl.line = s.Mark().line + 1;
+    sl.name = s["name"] ? text(r, s["name"], where + ".name") : fmt::format("slave {}", i + 1);
+    if (!names.insert(sl.name).second) r.fail(s["name"] ? s["name"] : s, where + ".name: '" + sl.name + "' is used twice");
+    if (!s["device"]) r.fail(s, where + ".device: missing (a product id such as a6b, or FILE.xml[:PRODUCT[:REVISION]])");
+    sl.device = text(r, s["device"], where + ".device");
+    if (esi::is_esi_reference(sl.device)) sl.device = r.path(sl.device);
+    try {
+      if (esi::is_esi_reference(sl.device)) {
+        (void)esi::load_esi_device(sl.device);
+      } else {
+        (void)profile::load_profile(sl.device, profile_dir);
+      }
+    } catch (const profile::ProfileError& e) {
+      std::string known;
+      for (const std::string& id : profile::known_products()) known += (known.empty() ? "" : ", ") + id;
+      r.fail(s["device"], fmt::format("{}.device: {}{}", where, e.what(),
+                                      esi::is_esi_reference(sl.device) ? "" : fmt::format(" (built-in: {})", known)));
+    }
+    if (s["alias"]) sl.alias = static_cast<std::uint16_t>(number(r, s["alias"], where + ".alias", 0xFFFF));
+    if (s["plant"]) sl.plant_file = r.path(text(r, s["plant"], where + ".plant"));
+    if (s["port"] && !s["parent"]) r.fail(s["port"], where + ".port: needs 'parent' (the slave whose port it is)");
+    parents.push_back({s["parent"], s["port"]});
+    f.slaves.push_back(std::move(sl));
+  }
+
+  // Parents name slaves given anywhere in the file; without any, the slaves form a line.
+  const bool tree = std::any_of(parents.begin(), parents.end(), [](const Parent& p) { return bool(p.parent); });
+  if (tree) {
+    f.topology.uplinks.resize(f.slaves.size());
+    for (std::size_t i = 0; i < f.slaves.size(); ++i) {
+      const std::string where = fmt::format("slaves[{}]", i);
+      network::Uplink& up = f.topology.uplinks[i];
+      if (!parents[i].parent) {
+        // Without a parent: the master for the first slave, else port 1 of the slave before.
+        up.parent = i == 0 ? network::Uplink::kMaster : static_cast<int>(i - 1);
+        up.port = 1;
+        continue;
+      }
+      const std::string p = parents[i].parent.IsScalar() ? parents[i].parent.Scalar() : "";
+      up.parent = p == "master" ? network::Uplink::kMaster
+                                : static_cast<int>(slave_ref(r, parents[i].parent, where + ".parent", f));
+      up.port = parents[i].port ? static_cast<int>(number(r, parents[i].port, where + ".port", 3)) : 1;
+    }
+    std::vector<std::uint8_t> descriptors;
+    for (const NetworkSlave& sl : f.slaves) descriptors.push_back(port_descriptor(sl.device, profile_dir));
+    try {
+      network::validate(f.topology, descriptors);
+    } catch (const std::invalid_argument& e) {
+      r.fail(slaves, fmt::format("slaves: {}", e.what()));
+    }
+  }
+
+  if (const YAML::Node wires = root["wires"]) {
+    if (!wires.IsSequence()) r.fail(wires, "wires: expected a list of {from: SLAVE INDEX:SUB, to: SLAVE INDEX:SUB}");
+    for (std::size_t i = 0; i < wires.size(); ++i) {
+      const YAML::Node w = wires[i];
+      const std::string where = fmt::format("wires[{}]", i);
+      if (!w.IsMap()) r.fail(w, where + ": expected a mapping with 'from' and 'to'");
+      r.only_keys(w, where, {"from", "to"});
+      if (!w["from"] || !w["to"]) r.fail(w, where + ": needs 'from' and 'to'");
+      network::SignalWire sw;
+      sw.from = wire_end(r, w["from"], where + ".from", f);
+      sw.to = wire_end(r, w["to"], where + ".to", f);
+      sw.name = fmt::format("{}:{}: {} ({} -> {})", file, w.Mark().line + 1, where, w["from"].Scalar(), w["to"].Scalar());
+      f.wires.push_back(std::move(sw));
+    }
+  }
+  return f;
+}
+
+NetworkFile load_network_file(const std::string& path, const std::string& profile_dir) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw NetworkFileError(fmt::format("{}: cannot read the network file", path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_network_file(text.str(), path, fs::path(path).parent_path().string(), profile_dir);
+}
+
+}  // namespace vdrive::machine
