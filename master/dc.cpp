@@ -5,6 +5,7 @@
 #include <array>
 #include <vector>
 
+#include "master/dc_topology.hpp"
 #include "master/master.hpp"
 #include "master/registers.hpp"
 
@@ -27,57 +28,62 @@ void require(const Wkc& wkc, std::uint16_t expected, const char* what, std::size
 }
 }  // namespace
 
+DcTopology measure_dc_topology(Master& master, std::vector<std::uint64_t>* local_times) {
+  Transport& t = master.transport();
+  auto& slaves = master.slaves();
+  // Latch the receive times of one frame at every port of every slave.
+  std::array<std::uint8_t, 4> latch{};
+  if (!t.bwr(reg::kDcReceiveTimes, latch)) throw MasterError("BWR 0x0900 (DC receive time latch): no reply");
+  // Every slave's port times and DL status (a slave without DC shows zeros and keeps its place).
+  std::vector<PortTimes> seen(slaves.size());
+  if (local_times) local_times->assign(slaves.size(), 0);
+  for (std::size_t i = 0; i < slaves.size(); ++i) {
+    Slave& s = slaves[i];
+    seen[i].dl_status = t.fprd_value<std::uint16_t>(s.station, reg::kDlStatus).value_or(0);
+    if (!s.dc_supported) continue;
+    std::array<std::uint8_t, 16> ports{};
+    std::array<std::uint8_t, 8> unit{};
+    require(t.fprd(s.station, reg::kDcReceiveTimes, ports), 1, "FPRD DC receive times", i);
+    require(t.fprd(s.station, reg::kDcReceiveTimeUnit, unit), 1, "FPRD DC receive time unit", i);
+    for (std::size_t p = 0; p < 4; ++p) seen[i].rx[p] = le32(std::span(ports).subspan(4 * p, 4));
+    if (local_times) (*local_times)[i] = le64(unit);  // 0x0918: local time of the port-0 receive
+  }
+  DcTopology topology = compute_dc_topology(seen);
+  for (std::size_t i = 0; i < slaves.size(); ++i) {
+    slaves[i].parent = static_cast<std::uint16_t>(topology.parent[i]);
+    slaves[i].parent_port = topology.parent_port[i];
+  }
+  return topology;
+}
+
 DcResult configure_dc(Master& master, const DcOptions& options) {
   Transport& t = master.transport();
   DcResult result;
   auto& slaves = master.slaves();
-  // 1. Latch the receive times of one frame at every port of every slave.
-  std::array<std::uint8_t, 4> latch{};
-  if (!t.bwr(reg::kDcReceiveTimes, latch)) throw MasterError("BWR 0x0900 (DC receive time latch): no reply");
+  // 1. Receive times at every port, and what they say about the line or tree.
+  std::vector<std::uint64_t> local;
+  const DcTopology topology = measure_dc_topology(master, &local);
 
-  struct Times {
-    std::uint32_t port0 = 0, port1 = 0;
-    bool port1_open = false;
-    std::uint64_t local = 0;   // 0x0918: local time of the port-0 receive
-  };
-  std::vector<Times> times(slaves.size());
-  for (std::size_t i = 0; i < slaves.size(); ++i) {
-    Slave& s = slaves[i];
-    if (!s.dc_supported) continue;
-    std::array<std::uint8_t, 16> ports{};
-    std::array<std::uint8_t, 8> local{};
-    require(t.fprd(s.station, reg::kDcReceiveTimes, ports), 1, "FPRD DC receive times", i);
-    require(t.fprd(s.station, reg::kDcReceiveTimeUnit, local), 1, "FPRD DC receive time unit", i);
-    const auto dl = t.fprd_value<std::uint16_t>(s.station, reg::kDlStatus).value_or(0);
-    times[i] = {le32(std::span(ports).subspan(0, 4)), le32(std::span(ports).subspan(4, 4)),
-                (dl & reg::kDlStatusPort1Comm) != 0, le64(local)};
-  }
-
-  // 2./3. Delays along the line, offsets to the reference's time base.
+  // 2./3. Delays from the topology, offsets to the reference's time base.
   std::size_t ref = slaves.size();
-  std::int64_t prev_rt = 0, prev_delay = 0;
   std::uint64_t ref_local = 0;
   std::int64_t ref_offset = 0;
   for (std::size_t i = 0; i < slaves.size(); ++i) {
     Slave& s = slaves[i];
     if (!s.dc_supported) continue;
-    // 32-bit port times wrap: the unsigned difference is right as long as the round trip is short.
-    const std::int64_t rt = times[i].port1_open ? static_cast<std::int64_t>(static_cast<std::uint32_t>(times[i].port1 - times[i].port0)) : 0;
     if (ref == slaves.size()) {
       ref = i;
-      ref_local = times[i].local;
+      ref_local = local[i];
       // The reference clock starts at the master's time.
       ref_offset = static_cast<std::int64_t>(static_cast<std::uint64_t>(master.clock().now()) - ref_local);
       s.dc_delay = 0;
       s.dc_offset = ref_offset;
       result.reference_station = s.station;
     } else {
-      s.dc_delay = prev_delay + (prev_rt - rt) / 2;
+      s.dc_delay = topology.delay[i] - topology.delay[ref];
       // At one instant, this slave's local time is (its latch - its delay) - (ref's latch) ahead.
-      s.dc_offset = ref_offset + static_cast<std::int64_t>(ref_local - times[i].local) + s.dc_delay;
+      s.dc_offset = ref_offset + static_cast<std::int64_t>(ref_local - local[i]) + s.dc_delay;
     }
-    prev_rt = rt;
-    prev_delay = s.dc_delay;
     ++result.dc_slaves;
     require(t.fpwr(s.station, reg::kDcSystemTimeOffset, bytes64(static_cast<std::uint64_t>(s.dc_offset))), 1,
             "FPWR DC system time offset", i);

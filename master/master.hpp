@@ -65,6 +65,10 @@ struct Slave {
   SlaveProcessData process_data;       // filled by configure_process_data()
   bool dc_supported = false;           // ESC feature 0x0008 bit 2, read at scan()
   std::int64_t dc_delay = 0;           // propagation delay from the reference clock (ns), by configure_dc()
+  // Where the slave hangs, as configure_dc() reconstructs it from the receive times (dc_topology.hpp):
+  // the parent's position and port; the first slave is its own parent, port 0.
+  std::uint16_t parent = 0;
+  int parent_port = 0;
   std::int64_t dc_offset = 0;          // system time offset written to 0x0920
   AlState state() const { return static_cast<AlState>(al.state); }
 };

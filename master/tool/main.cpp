@@ -33,6 +33,7 @@
 
 #include "master/al_state.hpp"
 #include "master/cia402_program.hpp"
+#include "master/dc.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "master/tool/foe_command.hpp"
@@ -64,6 +65,9 @@ nlohmann::json to_json(const Slave& s) {
   j["state"] = std::string(vdrive::master::to_string(s.state()));
   j["al_error"] = s.al.error;
   j["al_status_code"] = fmt::format("0x{:04X}", s.al.status_code);
+  j["parent"] = s.parent;
+  j["parent_port"] = s.parent_port;
+  j["delay_ns"] = s.dc_delay;
   return j;
 }
 
@@ -72,6 +76,13 @@ int run_scan(const std::string& iface, const std::optional<AlState>& target, boo
   Master master(link);
   if (master.scan() == 0) {
     throw std::runtime_error("no EtherCAT slaves on " + iface + " (frames come back with working counter 0)");
+  }
+  // Where each slave hangs and how far: from one frame's receive times (DC slaves only).
+  bool dc = false;
+  for (const Slave& s : master.slaves()) dc |= s.dc_supported;
+  if (dc) {
+    const vdrive::master::DcTopology topology = vdrive::master::measure_dc_topology(master);
+    for (std::size_t i = 0; i < master.slaves().size(); ++i) master.slaves()[i].dc_delay = topology.delay[i];
   }
   // scan() and request_state() leave each slave's AL status as last read.
   const bool reached = target ? master.request_state(*target) : true;
@@ -88,6 +99,13 @@ int run_scan(const std::string& iface, const std::optional<AlState>& target, boo
     std::puts(out.dump(2).c_str());
   } else {
     for (const Slave& s : master.slaves()) std::puts(vdrive::master::describe(s).c_str());
+    if (dc) {
+      std::puts("topology (from the receive times):");
+      for (const Slave& s : master.slaves()) {
+        if (s.position == 0) std::printf("  %u <- master\n", s.position);
+        else std::printf("  %u <- %u port %d, %lld ns\n", s.position, s.parent, s.parent_port, static_cast<long long>(s.dc_delay));
+      }
+    }
   }
   if (!reached) {
     std::fprintf(stderr, "vdrive-master: not every slave reached %s\n",

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "master/cia402_program.hpp"
+#include "master/dc.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "tests/master/virtual_line.hpp"
@@ -44,6 +45,13 @@ TEST(NetworkBench, TheMasterScansTheTreeInFrameOrder) {
   EXPECT_EQ(master.slaves()[2].info.product_code, 0x07D83052u);
   EXPECT_EQ(master.slaves()[3].info.product_code, 0x00000402u);
   EXPECT_EQ(master.slaves()[3].info.alias, 0x0102);
+  // The tree as the receive times show it: DI on the coupler's port 3, DO behind DI's port 1, the
+  // drive on the coupler's port 1, reached after the E-bus branch (500 ns per hop and direction).
+  const DcTopology t = measure_dc_topology(master);
+  EXPECT_EQ(t.parent, (std::vector<std::size_t>{0, 0, 1, 0}));
+  EXPECT_EQ(t.parent_port, (std::vector<int>{0, 3, 1, 1}));
+  EXPECT_EQ(t.delay, (std::vector<std::int64_t>{0, 500, 1000, 2500}));
+  EXPECT_EQ(master.slaves()[3].parent_port, 1);
 }
 
 TEST(NetworkBench, OpWithDcTheDriveFollowsAndTheLoopbackReadsBack) {

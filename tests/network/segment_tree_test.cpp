@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "esc_model/esc.hpp"
+#include "master/dc_topology.hpp"
 #include "tests/network/test_frame.hpp"
 #include "vdrive/network/segment.hpp"
 #include "vdrive/network/topology.hpp"
@@ -153,87 +154,18 @@ TEST_F(Tree, ReceiveTimesShowWhenTheFrameCameBackFromEachBranch) {
   }
 }
 
-// What a master reads of one slave, by position: DL status and the four receive times.
-struct Seen {
-  std::uint16_t dl_status = 0;
-  std::array<std::uint32_t, 4> rx{};
-};
-
-// A port a master counts as used: loop open and communication established (DL status bits
-// 8+2p, 9+2p = 0, 1).
-bool active(const Seen& s, int port) { return ((s.dl_status >> (8 + 2 * port)) & 0x03) == 0x02; }
-
-struct MasterView {
-  std::vector<std::size_t> parent;  // by position
-  std::vector<int> parent_port;
-  std::vector<std::int64_t> delay;  // propagation delay from the first slave, ns
-};
-
-// The master's side, from DL status and receive times alone: rebuild the tree (each slave hangs
-// on the next active port, in the order 3, 1, 2, of the nearest slave before it that has one
-// left) and the delays. A branch on port q of a parent P was entered when the frame left P's
-// port q, i.e. when it came back into P's previous active port (or entered P at port 0); the
-// time until it came back into port q is the round trip through that cable and everything behind
-// it, so the cable's share is half of what remains after the child's own branches.
-MasterView compute_delays(const std::vector<Seen>& seen) {
-  MasterView m;
-  const std::size_t n = seen.size();
-  m.parent.assign(n, 0);
-  m.parent_port.assign(n, 0);
-  m.delay.assign(n, 0);
-  const auto since = [](std::uint32_t later, std::uint32_t earlier) {
-    return static_cast<std::int64_t>(static_cast<std::int32_t>(later - earlier));
-  };
-  const auto last_port = [&](std::size_t k) {
-    int last = 0;
-    for (const int p : {3, 1, 2})
-      if (active(seen[k], p)) last = p;
-    return last;
-  };
-  struct Open {
-    std::size_t position;
-    int previous;  // the port whose time says when the frame left through the next one
-  };
-  std::vector<Open> open;
-  const auto next_port = [&](const Open& o) {
-    bool after = o.previous == 0;
-    for (const int p : {3, 1, 2}) {
-      if (after && active(seen[o.position], p)) return p;
-      after |= p == o.previous;
-    }
-    return -1;
-  };
-  if (n == 0) return m;
-  open.push_back({0, 0});
-  for (std::size_t k = 1; k < n; ++k) {
-    while (!open.empty() && next_port(open.back()) < 0) open.pop_back();
-    if (open.empty()) break;  // more slaves than ports: not a tree this master understands
-    Open& p = open.back();
-    const int q = next_port(p);
-    const Seen& ps = seen[p.position];
-    const std::int64_t left_parent = since(ps.rx[static_cast<std::size_t>(p.previous)], ps.rx[0]);
-    const std::int64_t round_trip = since(ps.rx[static_cast<std::size_t>(q)], ps.rx[static_cast<std::size_t>(p.previous)]);
-    const std::int64_t inside_child = since(seen[k].rx[static_cast<std::size_t>(last_port(k))], seen[k].rx[0]);
-    m.parent[k] = p.position;
-    m.parent_port[k] = q;
-    m.delay[k] = m.delay[p.position] + left_parent + (round_trip - inside_child) / 2;
-    p.previous = q;
-    open.push_back({k, 0});
-  }
-  return m;
-}
-
 TEST_F(Tree, AMastersDelayComputationGivesEachSlaveItsCumulativeDelay) {
   for (std::size_t i = 0; i < escs.size(); ++i) escs[i]->set_dc_model(0.0, static_cast<Nanos>(7'000'000 * (i + 3)));
   assign_addresses();
   latch();
-  std::vector<Seen> seen(escs.size());
+  // What the project master reads (master/dc_topology.hpp): DL status and the four receive times.
+  std::vector<master::PortTimes> seen(escs.size());
   for (std::size_t k = 0; k < seen.size(); ++k) {
     seen[k].dl_status = static_cast<std::uint16_t>(fprd(station(k), 0x0110, 2));
     for (int p = 0; p < 4; ++p)
       seen[k].rx[static_cast<std::size_t>(p)] = static_cast<std::uint32_t>(fprd(station(k), static_cast<std::uint16_t>(0x0900 + 4 * p), 4));
   }
-  const MasterView m = compute_delays(seen);
+  const master::DcTopology m = master::compute_dc_topology(seen);
   // Positions J, A, D, B, C: the tree as cabled, and the time each was reached after J.
   EXPECT_EQ(m.parent, (std::vector<std::size_t>{0, 0, 1, 0, 0}));
   EXPECT_EQ(m.parent_port, (std::vector<int>{0, 3, 1, 1, 2}));
