@@ -260,9 +260,19 @@ TEST_P(EsiExport, DictionaryHoldsEveryObject) {
         if (text_of(d, "Name") == type) dt = d;
       ASSERT_NE(dt, nullptr) << type;
       const auto subs = children(dt, "SubItem");
-      ASSERT_EQ(subs.size(), o.entries.size());
-      for (std::size_t k = 0; k < subs.size(); ++k)
-        EXPECT_EQ(number(subs[k]->FirstChildElement("SubIdx")->GetText()), o.entries[k].subindex);
+      // An ARRAY the ETG way: subindex 0 and "Elements" of a DTxxxxARR type with ArrayInfo.
+      if (subs.size() == 2 && text_of(subs[1], "Name") == "Elements") {
+        EXPECT_EQ(o.code, od::ObjectCode::Array);
+        const XMLElement* arr = nullptr;
+        for (const XMLElement* d : children(dictionary->FirstChildElement("DataTypes"), "DataType"))
+          if (text_of(d, "Name") == text_of(subs[1], "Type")) arr = d;
+        ASSERT_NE(arr, nullptr);
+        EXPECT_EQ(number(text_of(arr->FirstChildElement("ArrayInfo"), "Elements").c_str()), o.entries.size() - 1);
+      } else {
+        ASSERT_EQ(subs.size(), o.entries.size());
+        for (std::size_t k = 0; k < subs.size(); ++k)
+          EXPECT_EQ(number(subs[k]->FirstChildElement("SubIdx")->GetText()), o.entries[k].subindex);
+      }
       EXPECT_EQ(children(x->FirstChildElement("Info"), "SubItem").size(), o.entries.size());
     }
   }

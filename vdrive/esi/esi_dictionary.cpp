@@ -33,6 +33,20 @@ bool is_complex(const ObjectDesc& o) { return o.code != od::ObjectCode::Var; }
 
 std::string complex_type_name(const ObjectDesc& o) { return fmt::format("DT{:04X}", o.index); }
 
+// An ARRAY written the ETG way: subindex 0, then one element array (ArrayInfo) of subindexes 1..n,
+// every element of one type, size and access; that is how a reader tells an ARRAY from a RECORD.
+// An ARRAY that is not so regular is written as a record of its entries.
+bool etg_array(const ObjectDesc& o) {
+  if (o.code != od::ObjectCode::Array || o.entries.size() < 2 || o.entries[0].subindex != 0) return false;
+  const EntryDesc& first = o.entries[1];
+  for (std::size_t i = 1; i < o.entries.size(); ++i) {
+    const EntryDesc& e = o.entries[i];
+    if (e.subindex != i || e.type != first.type || e.bit_length != first.bit_length || e.access != first.access)
+      return false;
+  }
+  return true;
+}
+
 // Bit offsets for the complex type's SubItems, as a complete access transfers them: subindex 0
 // padded to 16 bits, the other entries packed in subindex order.
 struct Layout {
@@ -126,6 +140,41 @@ void write_data_types(XmlWriter& xml, const od::Dictionary& d) {
     if (!is_complex(o)) continue;
     const Layout l = layout(o);
     const std::vector<std::string> names = subitem_names(o);
+    if (etg_array(o)) {
+      const EntryDesc& sub0 = o.entries[0];
+      const EntryDesc& element = o.entries[1];
+      const std::size_t n = o.entries.size() - 1;
+      const std::string array_type = complex_type_name(o) + "ARR";
+      xml.open("DataType");
+      xml.element("Name", array_type);
+      xml.element("BaseType", entry_type(element));
+      xml.element("BitSize", std::to_string(n * element.bit_length));
+      xml.open("ArrayInfo");
+      xml.element("LBound", "1");
+      xml.element("Elements", std::to_string(n));
+      xml.close();
+      xml.close();
+      xml.open("DataType");
+      xml.element("Name", complex_type_name(o));
+      xml.element("BitSize", std::to_string(l.bit_size));
+      xml.open("SubItem");
+      xml.element("SubIdx", "0");
+      xml.element("Name", names[0]);
+      xml.element("Type", entry_type(sub0));
+      xml.element("BitSize", std::to_string(sub0.bit_length));
+      xml.element("BitOffs", "0");
+      write_flags(xml, sub0);
+      xml.close();
+      xml.open("SubItem");
+      xml.element("Name", "Elements");
+      xml.element("Type", array_type);
+      xml.element("BitSize", std::to_string(n * element.bit_length));
+      xml.element("BitOffs", "16");
+      write_flags(xml, element);
+      xml.close();
+      xml.close();
+      continue;
+    }
     xml.open("DataType");
     xml.element("Name", complex_type_name(o));
     xml.element("BitSize", std::to_string(l.bit_size));

@@ -296,7 +296,12 @@ private:
       if (target == nullptr)
         for (EntryDesc& e : desc.entries)
           if (e.name == name) target = &e;
-      if (target == nullptr && position < desc.entries.size()) target = &desc.entries[position];
+      if (target == nullptr && position < desc.entries.size()) {
+        target = &desc.entries[position];
+        // An array element's own name, where the file gives one ("SubIndex 001" is the default).
+        if (!name.empty() && target->name.rfind("SubIndex ", 0) == 0)
+          target->name = unique_name_undone(name, target->subindex);
+      }
       if (target != nullptr) read_values(xml_, XmlReading::child(s, "Info"), *target);
     }
   }
