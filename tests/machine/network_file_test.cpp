@@ -93,3 +93,4 @@ TEST(NetworkFile, NotYamlIsSaidSo) {
 }
 
 }  // namespace
+

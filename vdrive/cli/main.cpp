@@ -13,6 +13,7 @@
 #include "vdrive/cli/config_file.hpp"
 #include "vdrive/cli/demo_command.hpp"
 #include "vdrive/cli/esi_command.hpp"
+#include "vdrive/cli/network_command.hpp"
 #include "vdrive/cli/fault_command.hpp"
 #include "vdrive/cli/help_examples.hpp"
 #include "vdrive/cli/list_drives_command.hpp"
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
   add_list_drives_command(app);
   add_demo_command(app);
   add_esi_command(app);
+  add_network_command(app);
   add_od_command(app);
   add_sii_command(app);
   add_scenario_command(app);

@@ -29,6 +29,7 @@
 #include "plant/plant_yaml.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/esi/esi_import.hpp"
+#include "vdrive/machine/eni_reader.hpp"
 #include "vdrive/machine/network_file.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
@@ -46,6 +47,8 @@ struct RunOptions {
   std::string tap;
   std::vector<std::string> drives;
   std::string network_file;         // --network: the slaves, topology, aliases and wires of a network file
+  std::string eni;                  // --eni: the network a master's ENI describes
+  std::vector<std::string> esi_dirs;  // --esi-dir: where the ENI's devices' ESI files are
   Nanos hop_delay = 500;
   std::string profile_dir;
   bool no_qdisc_bypass = false;
@@ -216,7 +219,19 @@ void run(RunOptions o) {
     }
     for (const machine::NetworkSlave& s : o.network.slaves) o.drives.push_back(s.device);
   }
-  if (o.drives.empty()) throw CliError(kExitBadArguments, "no slaves: give --drive (repeat) or --network FILE");
+  if (!o.eni.empty()) {
+    if (!o.plants.empty()) throw CliError(kExitBadArguments, "--plant: with --eni, write the network file (vdrive network --from-eni) and give plants there");
+    try {
+      machine::EniNetwork eni = machine::read_eni(o.eni, o.esi_dirs, o.profile_dir);
+      for (const std::string& note : eni.notes) spdlog::info("{}", note);
+      o.network = std::move(eni.network);
+    } catch (const machine::NetworkFileError& e) {
+      throw CliError(kExitBadArguments, e.what());
+    }
+    for (const machine::NetworkSlave& s : o.network.slaves) o.drives.push_back(s.device);
+    o.network_file = o.eni;  // the rest as for a network file
+  }
+  if (o.drives.empty()) throw CliError(kExitBadArguments, "no slaves: give --drive (repeat), --network FILE or --eni FILE");
   check_products(o);
   if (o.cpu >= 0 && !runtime::cpu_is_allowed(o.cpu))
     throw CliError(kExitBadArguments, fmt::format("--cpu {}: no such CPU, or not one this process may use", o.cpu));
@@ -308,8 +323,13 @@ void add_run_command(CLI::App& app) {
       ->take_all();
   CLI::Option* network_file = cmd->add_option("--network", o->network_file,
                   "Serve the network FILE describes (slaves, topology, aliases, plants, wires; docs/networks.md)");
+  CLI::Option* eni = cmd->add_option("--eni", o->eni,
+                  "Serve the network a master's ENI (EtherCATConfig XML) describes (docs/networks.md)");
+  cmd->add_option("--esi-dir", o->esi_dirs, "With --eni: search DIR (recursively) for the slaves' ESI files (repeat)");
   drive->excludes(network_file);
   network_file->excludes(drive);
+  eni->excludes(drive);
+  eni->excludes(network_file);
   cmd->add_option("--plant", o->plants,
                   "N:FILE: slave N (cable order, from 0) moves the plant in FILE (docs/plant.md); repeat per slave")
       ->take_all();

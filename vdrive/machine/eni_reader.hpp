@@ -1,0 +1,34 @@
+#pragma once
+// A network from the master's ENI (EtherCATConfig XML, ETG.2100): the slaves the master was
+// configured for, in its order, each matched to a device vdrive can serve, and their topology.
+//
+// Matching, for each <Slave><Info> (VendorId, ProductCode, RevisionNo):
+//   1. a built-in (or --profile-dir) product with the same vendor and product code;
+//   2. a device of an ESI file under the search directories (*.xml, recursively) with the same
+//      vendor, product code and revision, else the same vendor and product code (nearest revision,
+//      with a note);
+//   3. none: an error naming the slave, its identity and where vdrive looked.
+// Topology: <PreviousPort> names the slave before (PhysAddr) and its port (A-D = 0-3); the first
+// slave hangs on the master. Every assumption is a note a user can read.
+#include <string>
+#include <vector>
+
+#include "vdrive/machine/network_file.hpp"
+
+namespace vdrive::machine {
+
+struct EniNetwork {
+  NetworkFile network;               // slaves (names from the ENI), topology; no wires
+  std::vector<std::uint16_t> station_addresses;  // <PhysAddr> per slave, as the master assigns them
+  std::vector<std::string> notes;    // what was matched how, and what was assumed
+};
+
+// Throws NetworkFileError ("<file>:<line>: <Element>: problem") for a malformed ENI or a slave no
+// device matches.
+EniNetwork read_eni(const std::string& path, const std::vector<std::string>& esi_dirs,
+                    const std::string& profile_dir = {});
+
+// The network file (YAML) equivalent of `network`, for `vdrive network --from-eni`.
+std::string to_network_yaml(const NetworkFile& network, const std::vector<std::string>& notes);
+
+}  // namespace vdrive::machine
