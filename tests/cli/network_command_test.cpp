@@ -22,7 +22,10 @@ TEST(NetworkCommand, FromEniPrintsTheNetworkFile) {
                                              kProducts + "/esi"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("slaves:\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("{name: \"Drive 5 (MINAS-A6B)\", device: \"a6b\", parent: 4, port: 1}"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("{name: \"Drive 5 (MINAS-A6B MADLT15BF)\", device: \"a6b\", parent: 4, port: 1, product_code: "
+                       "0x613C0005, revision: 0x00020000}"),
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("# slave 2 'Term 2 (EL1008)'"), std::string::npos) << r.out;
 }
 

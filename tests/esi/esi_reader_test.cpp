@@ -218,3 +218,84 @@ TEST(EsiSii, AllPdosOfADirectionAreInOneCategory) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace vdrive;
+
+std::string device(const std::string& body) {
+  return "<?xml version=\"1.0\"?>\n<EtherCATInfo>\n<Vendor><Id>#x99</Id><Name>V</Name></Vendor>\n<Descriptions>\n"
+         "<Devices>\n<Device Physics=\"YY\">\n<Type ProductCode=\"#x1\" RevisionNo=\"#x2\">T1</Type>\n<Name>N</Name>\n"
+         "<GroupType>G</GroupType>\n" + body + "\n</Device>\n</Devices>\n</Descriptions>\n</EtherCATInfo>\n";
+}
+
+std::string import_error(const std::string& xml) {
+  try {
+    esi::import_device(esi::parse_esi(xml, "d.xml").at(0));
+  } catch (const esi::EsiError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// Vendors' files: a record SubItem of type "ARRAY [0..7] OF BYTE" with its own SubIdx is one
+// 8-byte entry, not eight subindexes.
+TEST(EsiVendorFiles, AByteArraySubItemIsOneOctetString) {
+  const std::string xml = device(
+      "<Profile><Dictionary><DataTypes>\n"
+      "<DataType><Name>USINT</Name><BitSize>8</BitSize></DataType>\n"
+      "<DataType><Name>ARRAY [0..7] OF BYTE</Name><BaseType>BYTE</BaseType><BitSize>64</BitSize>"
+      "<ArrayInfo><LBound>0</LBound><Elements>8</Elements></ArrayInfo></DataType>\n"
+      "<DataType><Name>DT2000</Name><BitSize>80</BitSize>"
+      "<SubItem><SubIdx>0</SubIdx><Name>SubIndex 000</Name><Type>USINT</Type><BitSize>8</BitSize><BitOffs>0</BitOffs></SubItem>"
+      "<SubItem><SubIdx>1</SubIdx><Name>Blob</Name><Type>ARRAY [0..7] OF BYTE</Type><BitSize>64</BitSize><BitOffs>16</BitOffs></SubItem>"
+      "</DataType>\n</DataTypes><Objects>\n"
+      "<Object><Index>#x2000</Index><Name>Blob record</Name><Type>DT2000</Type><BitSize>80</BitSize><Flags><Access>ro</Access></Flags></Object>\n"
+      "</Objects></Dictionary></Profile>");
+  const esi::EsiDevice d = esi::parse_esi(xml, "d.xml").at(0);
+  ASSERT_EQ(d.objects.size(), 1u);
+  ASSERT_EQ(d.objects[0].entries.size(), 2u);
+  EXPECT_EQ(d.objects[0].entries[1].type, od::DataType::OctetString);
+  EXPECT_EQ(d.objects[0].entries[1].bit_length, 64);
+}
+
+// IgH's `ethercat xml` writes <Sm> without a type: it follows from the control byte.
+TEST(EsiVendorFiles, ASyncManagerWithoutTextTakesItsKindFromTheControlByte) {
+  const std::string xml = device(
+      "<Sm StartAddress=\"#x1000\" ControlByte=\"#x26\" Enable=\"1\"/>\n<Sm StartAddress=\"#x1080\" ControlByte=\"#x22\" Enable=\"1\"/>\n"
+      "<Sm StartAddress=\"#x1100\" ControlByte=\"#x64\" Enable=\"1\"/>\n<Sm StartAddress=\"#x1180\" ControlByte=\"#x20\" Enable=\"1\"/>");
+  const esi::EsiDevice d = esi::parse_esi(xml, "d.xml").at(0);
+  ASSERT_EQ(d.sync_managers.size(), 4u);
+  EXPECT_EQ(d.sync_managers[0].kind, "MBoxOut");
+  EXPECT_EQ(d.sync_managers[1].kind, "MBoxIn");
+  EXPECT_EQ(d.sync_managers[2].kind, "Outputs");
+  EXPECT_EQ(d.sync_managers[3].kind, "Inputs");
+}
+
+// The file's own PDOs are what the device maps, even where the dictionary has no PdoMapping.
+TEST(EsiVendorFiles, WhatTheFilesPdosMapIsMappable) {
+  const std::string xml = device(
+      "<Profile><Dictionary><DataTypes><DataType><Name>UINT</Name><BitSize>16</BitSize></DataType></DataTypes><Objects>\n"
+      "<Object><Index>#x6041</Index><Name>Statusword</Name><Type>UINT</Type><BitSize>16</BitSize><Flags><Access>ro</Access></Flags></Object>\n"
+      "</Objects></Dictionary></Profile>\n"
+      "<Sm StartAddress=\"#x1180\" ControlByte=\"#x20\" Enable=\"1\">Inputs</Sm>\n"
+      "<TxPdo Fixed=\"1\" Sm=\"0\"><Index>#x1A00</Index><Name>In</Name>"
+      "<Entry><Index>#x6041</Index><SubIndex>0</SubIndex><BitLen>16</BitLen><Name>Statusword</Name><DataType>UINT</DataType></Entry></TxPdo>");
+  const esi::ImportedDevice d = esi::import_device(esi::parse_esi(xml, "d.xml").at(0));
+  EXPECT_EQ(d.dictionary->find(0x6041, 0)->access, od::access::kReadAll | od::access::kTxPdoMappable);
+}
+
+TEST(EsiVendorFiles, APdoMappingItsOwnMappingObjectIsRefused) {
+  const std::string e = import_error(device(
+      "<Sm StartAddress=\"#x1100\" ControlByte=\"#x64\" Enable=\"1\">Outputs</Sm>\n"
+      "<RxPdo Fixed=\"1\" Sm=\"0\"><Index>#x1600</Index><Name>Out</Name>\n"
+      "<Entry><Index>#x1600</Index><SubIndex>1</SubIndex><BitLen>32</BitLen><Name>x</Name><DataType>UDINT</DataType></Entry></RxPdo>"));
+  EXPECT_NE(e.find("d.xml:12: <Entry>: PDO 1600h maps 1600h:01h, a PDO mapping or assignment object"), std::string::npos) << e;
+}
+
+TEST(EsiVendorFiles, ProcessDataInTheRegisterAreaIsRefusedWithTheReason) {
+  const std::string e = import_error(device("<Sm StartAddress=\"#x0F00\" ControlByte=\"#x44\" Enable=\"1\">Outputs</Sm>"));
+  EXPECT_NE(e.find("d.xml:10: <Sm>: Outputs at 0F00h, in the ESC's register area"), std::string::npos) << e;
+}
+
+}  // namespace

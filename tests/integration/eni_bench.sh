@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Integration: `vdrive run --eni bench_eni.xml --esi-dir tests/products/esi` serves the network a
 # master's ENI describes (the bench's coupler, terminals and ESI drive, matched to the ESI files of
-# the search directory, plus an A6B matched to the built-in product) as a tree; `vdrive-master scan`
+# the search directory, plus an A6B model matched to the built-in A6B and served with the ENI's
+# product code) as a tree; `vdrive-master scan`
 # on the other end of the veth pair finds the five slaves in the ENI's order and identities.
 #
 # Usage: bash eni_bench.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
@@ -24,7 +25,7 @@ python3 - "$WORK/scan.json" <<'PY' || fail "scan result wrong"
 import json, sys
 scan = json.load(open(sys.argv[1]))
 slaves = scan["slaves"]
-expected = ["0x044C2C52", "0x03F03052", "0x07D83052", "0x00000402", "0x60380005"]
+expected = ["0x044C2C52", "0x03F03052", "0x07D83052", "0x00000402", "0x613C0005"]
 assert [s["product_code"] for s in slaves] == expected, [s["product_code"] for s in slaves]
 assert [s["parent"] for s in slaves] == [0, 0, 1, 0, 3], [s["parent"] for s in slaves]
 assert all(s["state"] == "Pre-Op" and not s["al_error"] for s in slaves), slaves

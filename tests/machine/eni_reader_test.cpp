@@ -22,9 +22,14 @@ TEST(Eni, EachSlaveIsMatchedToADevice) {
   EXPECT_NE(n.network.slaves[0].device.find("io_terminals.xml:0x044C2C52:0x00110000"), std::string::npos);
   EXPECT_NE(n.network.slaves[3].device.find("generic_servo.xml:0x00000402:0x00010000"), std::string::npos);
   EXPECT_EQ(n.network.slaves[4].device, "a6b");
+  // Another model of the A6B series: the built-in A6B with the ENI's product code and revision.
+  ASSERT_TRUE(n.network.slaves[4].identity.has_value());
+  EXPECT_EQ(n.network.slaves[4].identity->product_code, 0x613C0005u);
+  EXPECT_EQ(n.network.slaves[4].identity->revision, 0x00020000u);
   EXPECT_EQ(n.station_addresses, (std::vector<std::uint16_t>{1001, 1002, 1003, 1004, 1005}));
   ASSERT_EQ(n.notes.size(), 5u);
-  EXPECT_NE(n.notes[4].find("built-in product a6b"), std::string::npos) << n.notes[4];
+  EXPECT_NE(n.notes[4].find("built-in product a6b, with the ENI's product code and revision"), std::string::npos)
+      << n.notes[4];
 }
 
 TEST(Eni, PreviousPortsMakeTheTree) {
@@ -48,6 +53,7 @@ TEST(Eni, TheNetworkFileItWritesReadsBackTheSame) {
   for (std::size_t i = 0; i < 5; ++i) {
     EXPECT_EQ(f.slaves[i].name, n.network.slaves[i].name);
     EXPECT_EQ(f.slaves[i].device, n.network.slaves[i].device);
+    EXPECT_EQ(f.slaves[i].identity.has_value(), n.network.slaves[i].identity.has_value());
     EXPECT_EQ(f.topology.uplinks[i].parent, n.network.topology.uplinks[i].parent);
     EXPECT_EQ(f.topology.uplinks[i].port, n.network.topology.uplinks[i].port);
   }

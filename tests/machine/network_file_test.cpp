@@ -94,3 +94,24 @@ TEST(NetworkFile, NotYamlIsSaidSo) {
 
 }  // namespace
 
+
+namespace {
+
+TEST(NetworkFileIdentity, ABuiltInProductTakesAnIdentityOfItsSeries) {
+  const vdrive::machine::NetworkFile f = vdrive::machine::parse_network_file(
+      "slaves:\n  - {device: a6b, product_code: 0x613C0005, revision: 0x20000}\n", "n.yaml", ".");
+  ASSERT_TRUE(f.slaves[0].identity.has_value());
+  EXPECT_EQ(f.slaves[0].identity->product_code, 0x613C0005u);
+  EXPECT_EQ(f.slaves[0].identity->revision, 0x20000u);
+}
+
+TEST(NetworkFileIdentity, AnIdentityOutsideTheSeriesIsRefused) {
+  const std::string e = error_of("slaves:\n  - {device: a6b, product_code: 0x513C0005}\n");
+  EXPECT_NE(e.find("n.yaml:2: slaves[0].product_code: a6b covers 0x60380005 under mask 0xF0000000, not 0x513C0005"),
+            std::string::npos)
+      << e;
+  const std::string d = error_of("slaves:\n  - {device: ds5c1, product_code: 0x10305071}\n");
+  EXPECT_NE(d.find("under mask 0xFFFFFFFF"), std::string::npos) << d;
+}
+
+}  // namespace

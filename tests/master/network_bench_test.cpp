@@ -117,3 +117,31 @@ TEST(NetworkBench, OpWithDcTheDriveFollowsAndTheLoopbackReadsBack) {
 
 }  // namespace
 }  // namespace vdrive::master
+
+namespace vdrive::master {
+namespace {
+
+// An A6B of another model than the built-in product's (an ENI's MADLT15BF, 613C0005h): the master
+// finds that identity in the SII and in 1018h, and the drive behaves as the A6B.
+TEST(NetworkIdentity, AnA6bModelIsServedWithItsOwnProductCode) {
+  network::NetworkOptions o;
+  o.identities = {network::IdentityChoice{0x613C0005, 0x00020000}};
+  test::VirtualLine line({"a6b"}, o);
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 1u);
+  EXPECT_EQ(master.slaves()[0].info.product_code, 0x613C0005u);
+  EXPECT_EQ(master.slaves()[0].info.revision, 0x00020000u);
+  master.set_mailbox_timeout(20'000'000);
+  ASSERT_TRUE(master.request_state(AlState::PreOp));
+  EXPECT_EQ(master.sdo(0).upload_value<std::uint32_t>(0x1018, 2), 0x613C0005u);
+  EXPECT_EQ(master.sdo(0).upload_value<std::uint32_t>(0x1018, 3), 0x00020000u);
+}
+
+TEST(NetworkIdentity, AProductCodeOutsideTheSeriesIsRefused) {
+  network::NetworkOptions o;
+  o.identities = {network::IdentityChoice{0x513C0005, 0}};
+  EXPECT_THROW(test::VirtualLine({"a6b"}, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vdrive::master

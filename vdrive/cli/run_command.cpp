@@ -197,9 +197,11 @@ void apply_network_file(const RunOptions& o, network::NetworkOptions& options) {
   const machine::NetworkFile& f = o.network;
   options.plants.assign(f.slaves.size(), std::nullopt);
   options.station_aliases.assign(f.slaves.size(), std::nullopt);
+  options.identities.assign(f.slaves.size(), std::nullopt);
   for (std::size_t i = 0; i < f.slaves.size(); ++i) {
     const machine::NetworkSlave& s = f.slaves[i];
     options.station_aliases[i] = s.alias;
+    options.identities[i] = s.identity;
     if (s.plant_file.empty()) continue;
     RunOptions one = o;
     one.plants = {fmt::format("{}:{}", i, s.plant_file)};

@@ -254,7 +254,10 @@ private:
     // The entries the type lays out, in order; an element array expands into one entry per element.
     for (const SubItemDef& sub : it->second.sub_items) {
       const auto element = types_.find(sub.type);
-      if (element != types_.end() && element->second.array && element->second.sub_items.empty()) {
+      // An element array expands into its elements; a SubItem with its own SubIdx whose type is a
+      // byte array ("ARRAY [0..511] OF BYTE") is one entry, an octet string.
+      const bool one_entry = sub.subindex.has_value() && resolve_basic(sub.type, sub.bit_size).has_value();
+      if (!one_entry && element != types_.end() && element->second.array && element->second.sub_items.empty()) {
         const TypeDef& arr = element->second;
         desc.code = od::ObjectCode::Array;
         const std::uint32_t element_bits = arr.elements > 0 ? arr.bit_size / static_cast<std::uint32_t>(arr.elements) : 0;

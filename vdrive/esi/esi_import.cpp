@@ -242,6 +242,8 @@ void synchronisation(const EsiDevice& d, ProductProfile& p) {
   s.sm_event_missed_subindex = find_entry(d.objects, 0x1C32, 0x0B) ? 0x0B : 0;
   s.cycle_too_small_subindex = find_entry(d.objects, 0x1C32, 0x0C) ? 0x0C : 0;
   s.sync_error_flag = find_entry(d.objects, 0x1C32, 0x20) != nullptr;
+  // An ESI device (ETG slave stack) takes SM2 events as they come: no lock onto the SM2 cycle.
+  s.sm2_in_step_check = false;
 }
 
 std::string visible_default(const std::vector<od::ObjectDesc>& objects, std::uint16_t index) {
@@ -293,9 +295,43 @@ std::string describe(const EsiDevice& d) {
                      d.product_code, d.revision, d.line);
 }
 
+// The file's own PDOs are what the device maps: an entry they map is PDO-mappable in that direction,
+// whatever the dictionary's PdoMapping says (vendors' files leave it out).
+void make_pdo_entries_mappable(std::vector<od::ObjectDesc>& objects, const EsiDevice& d) {
+  auto mark = [&](const std::vector<EsiPdo>& pdos, std::uint16_t bit) {
+    for (const EsiPdo& pdo : pdos)
+      for (const EsiPdoEntry& e : pdo.entries)
+        for (od::ObjectDesc& o : objects)
+          if (o.index == e.index)
+            for (od::EntryDesc& x : o.entries)
+              if (x.subindex == e.subindex) x.access = static_cast<std::uint16_t>(x.access | bit);
+  };
+  mark(d.rx_pdos, od::access::kRxPdoMappable);
+  mark(d.tx_pdos, od::access::kTxPdoMappable);
+}
+
+// What a file says that no device can be: a PDO entry naming a PDO mapping or assignment object, a
+// process-data SyncManager in the ESC's register area (the ESC model has SyncManagers in process
+// RAM only: a digital output terminal's SM0 on the output register 0F00h is not modelled).
+void check_device(const EsiDevice& d) {
+  for (const std::vector<EsiPdo>* list : {&d.rx_pdos, &d.tx_pdos})
+    for (const EsiPdo& pdo : *list)
+      for (const EsiPdoEntry& e : pdo.entries)
+        if (e.index >= 0x1600 && e.index <= 0x1C13)
+          throw EsiError(fmt::format("{}:{}: <Entry>: PDO {:04X}h maps {:04X}h:{:02X}h, a PDO mapping or assignment "
+                                     "object, not data; the file is inconsistent", d.file, e.line, pdo.index, e.index,
+                                     e.subindex));
+  for (const EsiSyncManager& sm : d.sync_managers)
+    if ((sm.kind == "Outputs" || sm.kind == "Inputs") && sm.start < 0x1000)
+      throw EsiError(fmt::format("{}:{}: <Sm>: {} at {:04X}h, in the ESC's register area (the digital I/O registers): "
+                                 "vdrive's ESC has SyncManagers in process RAM (1000h up) only; not served",
+                                 d.file, sm.line, sm.kind, sm.start));
+}
+
 }  // namespace
 
 ImportedDevice import_device(const EsiDevice& d) {
+  check_device(d);
   ImportedDevice out;
   ProductProfile& p = out.profile;
   p.id = d.type_text.empty() ? d.name : d.type_text;
@@ -326,6 +362,7 @@ ImportedDevice import_device(const EsiDevice& d) {
   // as the device's firmware would have them (od/default_pdo_objects.hpp).
   std::vector<od::ObjectDesc> objects = d.objects;
   add_pdo_objects(objects, d);
+  make_pdo_entries_mappable(objects, d);
   try {
     out.dictionary = std::make_shared<const od::Dictionary>(od::Dictionary::from_objects(std::move(objects), p));
   } catch (const EsiError&) {

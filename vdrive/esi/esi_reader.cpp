@@ -82,13 +82,19 @@ private:
     EsiSyncManager sm;
     sm.line = s->GetLineNum();
     sm.kind = XmlReading::text(s);
-    if (sm.kind != "MBoxOut" && sm.kind != "MBoxIn" && sm.kind != "Outputs" && sm.kind != "Inputs")
-      xml_.fail(s, fmt::format("'{}': expected MBoxOut, MBoxIn, Outputs or Inputs", sm.kind));
     sm.start = static_cast<std::uint16_t>(xml_.optional_attribute(s, "StartAddress", 0, kU16).value_or(0));
     sm.default_size = static_cast<std::uint16_t>(xml_.optional_attribute(s, "DefaultSize", 0, kU16).value_or(0));
     sm.min_size = static_cast<std::uint16_t>(xml_.optional_attribute(s, "MinSize", 0, kU16).value_or(0));
     sm.max_size = static_cast<std::uint16_t>(xml_.optional_attribute(s, "MaxSize", 0, kU16).value_or(0));
     sm.control = static_cast<std::uint8_t>(xml_.optional_attribute(s, "ControlByte", 0, kU8).value_or(0));
+    // No text (as IgH's `ethercat xml` writes them): the kind follows from the control byte's mode
+    // (bits 1-0: 10b mailbox, 00b buffered) and direction (bits 3-2: 01b written by the master).
+    if (sm.kind.empty() && s->Attribute("ControlByte") != nullptr) {
+      const bool mailbox = (sm.control & 0x03) == 0x02, written = (sm.control & 0x0C) == 0x04;
+      sm.kind = mailbox ? (written ? "MBoxOut" : "MBoxIn") : (written ? "Outputs" : "Inputs");
+    }
+    if (sm.kind != "MBoxOut" && sm.kind != "MBoxIn" && sm.kind != "Outputs" && sm.kind != "Inputs")
+      xml_.fail(s, fmt::format("'{}': expected MBoxOut, MBoxIn, Outputs or Inputs", sm.kind));
     sm.enable = xml_.optional_attribute(s, "Enable", 0, kU8).value_or(0) != 0;
     return sm;
   }

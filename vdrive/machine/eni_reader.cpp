@@ -27,6 +27,7 @@ struct Identity {
 struct Candidate {
   std::string reference;  // FILE.xml:0xPRODUCT:0xREVISION
   Identity id;
+  std::uint32_t mask = 0xFFFFFFFF;  // product codes it covers (built-in products)
 };
 
 // Every device of every ESI file under `dirs`; unreadable files are skipped with a note.
@@ -61,7 +62,7 @@ std::vector<Candidate> builtin_products(const std::string& profile_dir) {
   std::vector<Candidate> out;
   for (const std::string& p : profile::known_products()) {
     const profile::Identity i = profile::load_profile(p, profile_dir).identity;
-    out.push_back({p, {i.vendor_id, i.product_code, i.revision}});
+    out.push_back({p, {i.vendor_id, i.product_code, i.revision}, i.product_code_mask});
   }
   return out;
 }
@@ -80,8 +81,12 @@ EniNetwork read_eni(const std::string& path, const std::vector<std::string>& esi
   if (!in) throw NetworkFileError(fmt::format("{}: cannot read the ENI file", path));
   std::ostringstream text;
   text << in.rdbuf();
+  return parse_eni(text.str(), path, esi_dirs, profile_dir);
+}
+
+EniNetwork parse_eni(std::string_view s, const std::string& path, const std::vector<std::string>& esi_dirs,
+                     const std::string& profile_dir) {
   tinyxml2::XMLDocument doc;
-  const std::string s = text.str();
   if (doc.Parse(s.data(), s.size()) != tinyxml2::XML_SUCCESS)
     throw NetworkFileError(fmt::format("{}:{}: not well-formed XML: {}", path, doc.ErrorLineNum(),
                                        doc.ErrorStr() != nullptr ? doc.ErrorStr() : "parse error"));
@@ -117,14 +122,15 @@ EniNetwork read_eni(const std::string& path, const std::vector<std::string>& esi
       const std::string who = fmt::format("slave {} '{}' (vendor 0x{:08X}, product 0x{:08X}, revision 0x{:08X})",
                                           out.network.slaves.size() + 1, slave.name, id.vendor, id.product, id.revision);
       const auto builtin = std::find_if(builtins.begin(), builtins.end(), [&](const Candidate& c) {
-        return c.id.vendor == id.vendor && c.id.product == id.product;
+        return c.id.vendor == id.vendor && (c.id.product & c.mask) == (id.product & c.mask);
       });
       if (builtin != builtins.end()) {
         slave.device = builtin->reference;
+        const bool same = builtin->id.product == id.product && builtin->id.revision == id.revision;
+        // A product of the series the built-in product covers: served with the ENI's identity.
+        if (!same) slave.identity = network::IdentityChoice{id.product, id.revision};
         out.notes.push_back(fmt::format("{}: built-in product {}{}", who, builtin->reference,
-                                        builtin->id.revision == id.revision
-                                            ? ""
-                                            : fmt::format(" (its revision is 0x{:08X})", builtin->id.revision)));
+                                        same ? "" : ", with the ENI's product code and revision"));
       } else {
         const Candidate* exact = nullptr;
         const Candidate* near = nullptr;
@@ -145,8 +151,12 @@ EniNetwork read_eni(const std::string& path, const std::vector<std::string>& esi
         } else {
           std::string dirs;
           for (const std::string& d : esi_dirs) dirs += (dirs.empty() ? "" : ", ") + d;
+          std::string skipped;
+          for (const std::string& n : out.notes)
+            if (n.rfind("skipped ", 0) == 0) skipped += "\n  " + n;
           xml.fail(sl, fmt::format("{}: no built-in product and no ESI device matches it (searched {}); add its "
-                                   "ESI file to an --esi-dir", who, dirs.empty() ? "no --esi-dir" : dirs));
+                                   "ESI file to an --esi-dir{}", who, dirs.empty() ? "no --esi-dir" : dirs,
+                                   skipped.empty() ? "" : "; files that could not be read:" + skipped));
         }
       }
       Previous prev;
@@ -210,6 +220,7 @@ std::string to_network_yaml(const NetworkFile& n, const std::vector<std::string>
       else y += fmt::format(", parent: {}, port: {}", up.parent + 1, up.port);
     }
     if (s.alias) y += fmt::format(", alias: 0x{:04X}", *s.alias);
+    if (s.identity) y += fmt::format(", product_code: 0x{:08X}, revision: 0x{:08X}", s.identity->product_code, s.identity->revision);
     y += "}\n";
   }
   return y;

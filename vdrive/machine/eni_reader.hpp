@@ -11,6 +11,7 @@
 // Topology: <PreviousPort> names the slave before (PhysAddr) and its port (A-D = 0-3); the first
 // slave hangs on the master. Every assumption is a note a user can read.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vdrive/machine/network_file.hpp"
@@ -27,6 +28,9 @@ struct EniNetwork {
 // device matches.
 EniNetwork read_eni(const std::string& path, const std::vector<std::string>& esi_dirs,
                     const std::string& profile_dir = {});
+// The same for a document in memory; `file` names it in messages.
+EniNetwork parse_eni(std::string_view text, const std::string& file, const std::vector<std::string>& esi_dirs,
+                     const std::string& profile_dir = {});
 
 // The network file (YAML) equivalent of `network`, for `vdrive network --from-eni`.
 std::string to_network_yaml(const NetworkFile& network, const std::vector<std::string>& notes);

@@ -166,7 +166,7 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
     const YAML::Node s = slaves[i];
     const std::string where = fmt::format("slaves[{}]", i);
     if (!s.IsMap()) r.fail(s, where + ": expected a mapping with 'device'");
-    r.only_keys(s, where, {"name", "device", "alias", "plant", "parent", "port"});
+    r.only_keys(s, where, {"name", "device", "alias", "plant", "parent", "port", "product_code", "revision"});
     NetworkSlave sl;
     sl.line = s.Mark().line + 1;
     sl.name = s["name"] ? text(r, s["name"], where + ".name") : fmt::format("slave {}", i + 1);
@@ -185,6 +185,20 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
       for (const std::string& id : profile::known_products()) known += (known.empty() ? "" : ", ") + id;
       r.fail(s["device"], fmt::format("{}.device: {}{}", where, e.what(),
                                       esi::is_esi_reference(sl.device) ? "" : fmt::format(" (built-in: {})", known)));
+    }
+    if (s["revision"] && !s["product_code"]) r.fail(s["revision"], where + ".revision: needs 'product_code'");
+    if (s["product_code"]) {
+      if (esi::is_esi_reference(sl.device))
+        r.fail(s["product_code"], where + ".product_code: an ESI device has the identity of its file; name another device");
+      network::IdentityChoice id;
+      id.product_code = static_cast<std::uint32_t>(number(r, s["product_code"], where + ".product_code", 0xFFFFFFFF));
+      const profile::Identity own = profile::load_profile(sl.device, profile_dir).identity;
+      id.revision = s["revision"] ? static_cast<std::uint32_t>(number(r, s["revision"], where + ".revision", 0xFFFFFFFF))
+                                  : own.revision;
+      if (!own.covers(own.vendor_id, id.product_code))
+        r.fail(s["product_code"], fmt::format("{}.product_code: {} covers 0x{:08X} under mask 0x{:08X}, not 0x{:08X}", where,
+                                              sl.device, own.product_code, own.product_code_mask, id.product_code));
+      sl.identity = id;
     }
     if (s["alias"]) sl.alias = static_cast<std::uint16_t>(number(r, s["alias"], where + ".alias", 0xFFFF));
     if (s["plant"]) sl.plant_file = r.path(text(r, s["plant"], where + ".plant"));

@@ -31,6 +31,8 @@ struct NetworkSlave {
   std::string name;                       // as the file names it ("slave N" when it does not)
   std::string device;                     // product id or ESI reference (path resolved)
   std::optional<std::uint16_t> alias;
+  // A built-in product served with another identity it covers (product_code, revision keys).
+  std::optional<network::IdentityChoice> identity;
   std::string plant_file;                 // resolved path, "" = the product's default plant
   int line = 0;                           // 1-based, for messages
 };

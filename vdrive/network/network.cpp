@@ -24,6 +24,16 @@ void set_station_alias(std::vector<std::uint8_t>& sii, std::uint16_t alias) {
   sii[14] = esc::sii_config_crc(std::span<const std::uint8_t>(sii).first(14));
 }
 
+// A product code and revision the product covers (Identity::covers), or std::invalid_argument.
+void choose_identity(profile::ProductProfile& p, const IdentityChoice& choice, std::size_t slave) {
+  if (!p.identity.covers(p.identity.vendor_id, choice.product_code))
+    throw std::invalid_argument(fmt::format("slave {}: {} does not cover product code 0x{:08X} (its own is 0x{:08X}, "
+                                            "mask 0x{:08X})", slave + 1, p.id, choice.product_code,
+                                            p.identity.product_code, p.identity.product_code_mask));
+  p.identity.product_code = choice.product_code;
+  p.identity.revision = choice.revision;
+}
+
 }  // namespace
 
 Network::Network(std::span<const std::string> product_ids, const Clock& clock,
@@ -42,6 +52,12 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
       firmware_options.dictionary = device->dictionary;
     } else {
       slave->profile = profile::load_profile(id, options.profile_dir);
+      if (slaves_.size() < options.identities.size() && options.identities[slaves_.size()]) {
+        choose_identity(slave->profile, *options.identities[slaves_.size()], slaves_.size());
+        // Its own dictionary: 1018h reports the identity chosen.
+        firmware_options.dictionary =
+            std::make_shared<const od::Dictionary>(od::Dictionary::load(slave->profile, options.profile_dir));
+      }
       esc_config = profile::make_esc_config(slave->profile);
     }
     if (slaves_.size() < options.station_aliases.size() && options.station_aliases[slaves_.size()])

@@ -34,6 +34,11 @@ struct DcModel {
   Nanos start_offset = 0;
 };
 
+struct IdentityChoice {
+  std::uint32_t product_code = 0;
+  std::uint32_t revision = 0;
+};
+
 struct NetworkOptions {
   Nanos hop_delay = 500;     // ns per hop and direction, see Segment
   std::string profile_dir;   // empty: the profiles built into the binary
@@ -43,6 +48,9 @@ struct NetworkOptions {
   // Per slave in the order given: the configured station alias its EEPROM holds (SII word 4, loaded
   // into 0x0012 at power-on); absent: the product's (usually 0).
   std::vector<std::optional<std::uint16_t>> station_aliases = {};
+  // Per slave in the order given: the product code and revision a built-in product is served with,
+  // where it covers several (Identity::product_code_mask, e.g. an ENI's A6B model); absent: its own.
+  std::vector<std::optional<IdentityChoice>> identities = {};
   // Wires between slaves' entries (signal_wire.hpp).
   std::vector<SignalWire> wires = {};
   // Where each slave's port 0 is cabled (topology.hpp), per slave in the order given; empty: the

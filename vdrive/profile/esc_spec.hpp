@@ -22,6 +22,14 @@ struct Identity {
   std::string vendor_name;            // SII/ESI vendor string
   std::string order_code;             // SII order string (ESI Type)
   std::string group;                  // SII group string (ESI group type)
+  // The product codes the product stands for: those equal to product_code in the bits of this mask
+  // (the A6B: bits 31-28 = 6 for the whole series). A network may serve any of them (an ENI's own
+  // product code and revision), with the product's behaviour.
+  std::uint32_t product_code_mask = 0xFFFFFFFF;
+
+  bool covers(std::uint32_t vendor, std::uint32_t code) const {
+    return vendor == vendor_id && (code & product_code_mask) == (product_code & product_code_mask);
+  }
 };
 
 // One SyncManager as the product's SII/ESI declares it (default start, length, control, enable).

@@ -45,6 +45,7 @@ Identity read_identity(YamlMapReader m) {
   id.vendor_name = m.string("vendor_name");
   id.order_code = m.string("order_code");
   id.group = m.string("group");
+  if (m.has("product_code_mask")) id.product_code_mask = m.u32("product_code_mask");
   m.finish();
   return id;
 }

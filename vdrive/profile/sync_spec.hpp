@@ -91,6 +91,9 @@ struct SyncSpec {
   std::uint8_t sm_event_missed_subindex = 0;
   std::uint8_t cycle_too_small_subindex = 0;
   bool sync_error_flag = false;                       // 1C32h/1C33h-20h is set on lost sync
+  // SM-synchronous mode: an SM2 event out of step with the cycle is a PLL error (the built-in
+  // drives lock onto the SM2 cycle); false: SM2 events are taken as they come (ETG SSC devices).
+  bool sm2_in_step_check = true;
 
   // True when `ns` is a cycle time the product accepts in SM2/DC mode (1C32h-02h / 09A0h).
   bool accepts_cycle(std::uint32_t ns) const {

@@ -171,6 +171,7 @@ void SyncModule::handle(const MonitorReport& r, Nanos cycle_at) {
       raise_fault(codes.sync_error, ecat::AlState::SafeOp);
       break;
     case MonitorReport::Fault::PllError:
+      if (decision_.mode == SyncMode::Sm2Event && !rules_.spec.sm2_in_step_check) break;
       if (rules_.spec.sync_error_flag)
         for (const std::uint16_t index : {kOutputSync, kInputSync}) objects_.set(index, sub::kSyncError, 1);
       raise_fault(codes.pll_error, ecat::AlState::SafeOp);
