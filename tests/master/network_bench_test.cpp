@@ -9,6 +9,7 @@
 #include <string>
 
 #include "master/cia402_program.hpp"
+#include "tests/master/csp_sine_run.hpp"
 #include "master/dc.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
@@ -61,19 +62,6 @@ TEST(NetworkBench, OpWithDcTheDriveFollowsAndTheLoopbackReadsBack) {
   ASSERT_EQ(master.scan(), 4u);
   master.set_mailbox_timeout(20'000'000);
 
-  SineProgramOptions sine;
-  sine.cycle = 1'000'000;
-  sine.frequency_hz = 1.0;
-  sine.motion = 1'000'000'000;
-  SineProgram program(sine);
-  OpRunOptions options;
-  options.cycle = 1'000'000;
-  options.dc = true;
-  options.drift_frames = 200;
-  options.mailbox_timeout = 20'000'000;
-  program.attach(options);
-  options.cycles = program.cycles_needed(options.cycle);
-
   // The output terminal's byte and the input terminal's byte in the process image.
   auto offsets = [&] {
     std::uint32_t start = UINT32_MAX;
@@ -86,31 +74,22 @@ TEST(NetworkBench, OpWithDcTheDriveFollowsAndTheLoopbackReadsBack) {
   };
   std::uint64_t cycle = 0, matched = 0, compared = 0;
   std::uint8_t written = 0;
-  const auto sine_outputs = options.outputs;
-  options.outputs = [&](std::span<std::uint8_t> image) {
-    sine_outputs(image);
-    written = static_cast<std::uint8_t>((++cycle / 50) & 1);  // channel 1 toggles every 50 cycles
-    image[offsets().first] = written;
-  };
-  const auto sine_inputs = options.inputs;
-  options.inputs = [&](std::span<std::uint8_t> image) {
-    sine_inputs(image);
-    // Outputs act in Op only (after the Safe-Op cycles); then a few cycles for each change to arrive.
-    if (cycle <= options.safeop_cycles + 50 || cycle % 50 < 5) return;
-    ++compared;
-    if ((image[offsets().second] & 1) == written) ++matched;
-  };
-  const OpRunResult result = run_to_op(master, options);
-  ASSERT_TRUE(result.reached_op) << result.error;
-  EXPECT_EQ(result.stats.wrong_wkc, 0u);
-  EXPECT_EQ(result.left_op, 0u);
-  const std::vector<DriveResult> drives = program.results();
-  ASSERT_EQ(drives.size(), 4u);
-  const DriveResult& r = drives[3];
-  EXPECT_TRUE(r.enabled) << describe(r);
-  EXPECT_FALSE(r.faulted) << describe(r);
-  EXPECT_GE(r.samples, 900u) << describe(r);
-  EXPECT_LE(r.max_following_error, r.following_window) << describe(r);
+  const test::CspSineRun run = test::run_csp_sine_at_1ms(master, 1'000'000'000, [&](OpRunOptions& options) {
+    options.outputs = [&, sine = options.outputs](std::span<std::uint8_t> image) {
+      sine(image);
+      written = static_cast<std::uint8_t>((++cycle / 50) & 1);  // channel 1 toggles every 50 cycles
+      image[offsets().first] = written;
+    };
+    options.inputs = [&, sine = options.inputs, safeop = options.safeop_cycles](std::span<std::uint8_t> image) {
+      sine(image);
+      // Outputs act in Op only (after the Safe-Op cycles); then a few cycles for each change to arrive.
+      if (cycle <= safeop + 50 || cycle % 50 < 5) return;
+      ++compared;
+      if ((image[offsets().second] & 1) == written) ++matched;
+    };
+  });
+  ASSERT_EQ(run.drives.size(), 4u);
+  test::expect_drive_followed(run, 3, [&] { return line.network().esc(1).peek_u16(0x0134); });
   EXPECT_GT(compared, 500u);
   EXPECT_EQ(matched, compared) << "the input terminal reads what the output terminal drives";
 }
