@@ -55,6 +55,10 @@ DS1000A = [  # ds1000a-ec-manual.ja.txt, table 13.2.1
 ]
 
 A6B = [  # panasonic-minas-a6b-ethercat-spec.zh.txt, chapter 9
+    (0x608F, 2, "default", 1),                # no default in ch. 9 (L39101); factory 1 (L28608-L28610): erratum
+    (0x6091, 1, "default", 1),                # L39113 none; factory 1 (L28608-L28610, L28640)
+    (0x6091, 2, "default", 1),                # L39115 none; factory 1 (L28608-L28610, L28641)
+    (0x6092, 2, "default", 1),                # L39129 none; factory 1 (L28608-L28610, L28636)
     (0x1001, 0, "data_type", "U8"),           # L34197 Error register － 0 - 255 U8 ro No ALL No X
     (0x1001, 0, "max", 255),                  # L34197
     (0x1010, 1, "access", "rw"),              # L34211 Save all parameters ... U32 rw No ALL No A
