@@ -96,7 +96,16 @@ TEST(FirmwareMailboxSmCheck, OddStartIsRejected) {
   EXPECT_EQ(check(sms, rules), MailboxSmFault::Sm0OddStart);
   sms = good_layout();
   sms[1].start = 0x1201;
-  EXPECT_EQ(check(sms, rules), MailboxSmFault::Sm1OddStart);
+  EXPECT_EQ(check(sms, product("ds5c1").mailbox_rules), MailboxSmFault::Sm1OddStart);  // E-811: both (L7125)
+}
+
+// A6B Err81.1 names an odd address of the receive mailbox only (L33414): SM1's start is not checked.
+TEST(FirmwareMailboxSmCheck, A6bChecksOnlyTheReceiveMailboxForAnOddStart) {
+  const auto rules = product("a6b").mailbox_rules;
+  EXPECT_FALSE(rules.require_even_sm1_start);
+  auto sms = good_layout();
+  sms[1].start = 0x1201;
+  EXPECT_EQ(check(sms, rules), MailboxSmFault::Ok);
 }
 
 TEST(FirmwareMailboxSmCheck, A6bControlLowNibbleMustBeMailboxWriteAndRead) {

@@ -223,7 +223,6 @@ const SmViolation kCommonViolations[] = {
     {"SM0 shorter than 32", 0, 0, 31, -1, true},
     {"SM1 shorter than 32", 1, 0, 31, -1, true},
     {"SM0 odd start", 0, 0x1001, 0, -1, true},
-    {"SM1 odd start", 1, 0x1201, 0, -1, true},
     {"SM0 control = read mailbox", 0, 0, 0, 0x22, true},
     {"SM1 control = write mailbox", 1, 0, 0, 0x26, true},
     {"SM1 control = 3-buffer", 1, 0, 0, 0x20, true},
@@ -235,6 +234,13 @@ INSTANTIATE_TEST_SUITE_P(
     AllProducts, FirmwareMailboxViolation,
     ::testing::Combine(::testing::Values("a6b", "ds5c1", "ds1000a"),
                        ::testing::ValuesIn(kCommonViolations)));
+
+// An odd send-mailbox start: DS5C1 E-811 (L7125) and the SSC rules; the A6B checks the receive
+// mailbox only (A6bAcceptsAnOddSendMailboxStart).
+const SmViolation kOddSm1Start[] = {{"SM1 odd start", 1, 0x1201, 0, -1, true}};
+
+INSTANTIATE_TEST_SUITE_P(OddSm1, FirmwareMailboxViolation,
+                         ::testing::Combine(::testing::Values("ds5c1", "ds1000a"), ::testing::ValuesIn(kOddSm1Start)));
 
 // DS5C1's own windows (E-811, L7125): SM0 start 1000h-10FFh, SM1 start 1200h-12FFh, SM1 >= 40,
 // both <= 256, control bits 5-0.
@@ -249,6 +255,15 @@ const SmViolation kDs5c1Violations[] = {
 INSTANTIATE_TEST_SUITE_P(Ds5c1, FirmwareMailboxViolation,
                          ::testing::Combine(::testing::Values("ds5c1"),
                                             ::testing::ValuesIn(kDs5c1Violations)));
+
+TEST(FirmwareOnEscMailbox, A6bAcceptsAnOddSendMailboxStart) {
+  // Err81.1 names an odd address of the receive mailbox only (L33414).
+  Bench b(load("a6b"));
+  b.configure_sm(0, 0x1000, 0x100, 0x26, true);
+  b.configure_sm(1, 0x1201, 0x100, 0x22, true);
+  b.request(0x0002);
+  EXPECT_EQ(b.al_status(), 0x0002);
+}
 
 TEST(FirmwareOnEscMailbox, A6bAcceptsAMailboxWithoutIrqBits) {
   // Err81.1 checks only bits 3-0 of 0804h/080Ch (L33424-L33430).

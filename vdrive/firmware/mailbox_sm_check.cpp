@@ -56,7 +56,7 @@ MailboxSmFault check_mailbox_sms(std::span<const SmChannel> sms,
   if (sm1.start < rules.sm1_start_min || sm1.start > rules.sm1_start_max)
     return MailboxSmFault::Sm1Start;
   if (rules.require_even_start && (sm0.start & 1u) != 0) return MailboxSmFault::Sm0OddStart;
-  if (rules.require_even_start && (sm1.start & 1u) != 0) return MailboxSmFault::Sm1OddStart;
+  if (rules.require_even_sm1_start && (sm1.start & 1u) != 0) return MailboxSmFault::Sm1OddStart;
   if ((sm0.control & rules.sm0_control_mask) != rules.sm0_control_value)
     return MailboxSmFault::Sm0Control;
   if ((sm1.control & rules.sm1_control_mask) != rules.sm1_control_value)

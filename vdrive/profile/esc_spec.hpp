@@ -56,7 +56,8 @@ struct MailboxSmRules {
   std::uint16_t sm1_start_min = 0x1000, sm1_start_max = 0xFFFF;
   std::uint8_t sm0_control_mask = 0x0F, sm0_control_value = 0x06;  // mailbox, write
   std::uint8_t sm1_control_mask = 0x0F, sm1_control_value = 0x02;  // mailbox, read
-  bool require_even_start = true;
+  bool require_even_start = true;            // SM0 (receive mailbox) start must be even
+  bool require_even_sm1_start = true;        // SM1 (send mailbox) too (profile key, default as SM0)
 };
 
 struct EscResources {

@@ -70,6 +70,7 @@ PdoRules read_pdo_rules(YamlMapReader m) {
   if ((r.wrong_state_abort >> 24) == 0) m.fail("wrong_state_abort", "expected an SDO abort code (0x05xxxxxx-0x08xxxxxx)");
   r.checked_at_safeop = m.boolean("checked_at_safeop");
   r.byte_aligned_total = m.boolean("byte_aligned_total");
+  if (m.has("sm_control_mode_checked")) r.sm_control_mode_checked = m.boolean("sm_control_mode_checked");
   m.finish();
   return r;
 }

@@ -54,6 +54,9 @@ struct PdoRules {
   std::uint32_t wrong_state_abort = 0x06010003;       // SDO abort for a write outside writable_states
   bool checked_at_safeop = true;                      // size/mappability checked at PreOp->SafeOp (not on SDO write)
   bool byte_aligned_total = false;                    // total size must be whole bytes (padding rule)
+  // SM2/SM3 control byte: the mode bits 1-0 must be 3-buffer (00b) as well as the direction bits 3-2;
+  // false: the direction only (A6B Err81.7 names bits 3-2 alone, L33570, L33610).
+  bool sm_control_mode_checked = true;
 };
 
 }  // namespace vdrive::profile

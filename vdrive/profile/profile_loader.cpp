@@ -112,6 +112,7 @@ MailboxSmRules read_rules(YamlMapReader m) {
   r.sm1_control_mask = m.u8("sm1_control_mask");
   r.sm1_control_value = m.u8("sm1_control_value");
   r.require_even_start = m.boolean("require_even_start");
+  r.require_even_sm1_start = m.has("require_even_sm1_start") ? m.boolean("require_even_sm1_start") : r.require_even_start;
   m.finish();
   return r;
 }

@@ -63,6 +63,19 @@ TEST(PdoSmCheck, StartEvenAndThreeBuffersInsideProcessRam) {
   EXPECT_EQ(check_process_data_sm(sms, 2, 9, kRamEnd), PdSmFault::Ok);
 }
 
+// A6B Err81.7 checks the direction bits 3-2 only (L33570, L33610): a mailbox-mode SM2 that the
+// master writes passes when the mode is not checked; the direction still counts.
+TEST(PdoSmCheck, WithoutTheModeCheckOnlyTheDirectionCounts) {
+  auto sms = good_layout();
+  sms[2].control = 0x66;  // mailbox mode, ECAT writes
+  EXPECT_EQ(check_process_data_sm(sms, 2, true, 9, kRamEnd, /*check_mode=*/false), PdSmFault::Ok);
+  EXPECT_EQ(check_process_data_sm(sms, 2, true, 9, kRamEnd, /*check_mode=*/true), PdSmFault::Control);
+  sms[2].control = 0x60;  // 3-buffer, but ECAT reads
+  EXPECT_EQ(check_process_data_sm(sms, 2, true, 9, kRamEnd, /*check_mode=*/false), PdSmFault::Control);
+  EXPECT_FALSE(vdrive::profile::load_profile("a6b").pdo_rules.sm_control_mode_checked);
+  EXPECT_TRUE(vdrive::profile::load_profile("ds5c1").pdo_rules.sm_control_mode_checked);
+}
+
 TEST(PdoSmCheck, ControlMustBeThreeBufferWithTheDirection) {
   auto sms = good_layout();
   sms[2].control = 0x66;  // mailbox mode

@@ -35,7 +35,7 @@ std::string_view describe(PdSmFault fault) {
 }
 
 PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, bool outputs, std::uint16_t mapped_bytes,
-                                std::uint32_t ram_end) {
+                                std::uint32_t ram_end, bool check_mode) {
   const auto n = static_cast<std::size_t>(sm);
   if (n >= sms.size()) return mapped_bytes > 0 ? PdSmFault::Disabled : PdSmFault::Ok;
   const SmChannel& ch = sms[n];
@@ -45,7 +45,7 @@ PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, bool out
   if (ch.start % 2 != 0) return PdSmFault::OddStart;
   if (ch.start < reg::kRegisterEnd || ch.start + footprint(ch) > ram_end) return PdSmFault::Start;
   const std::uint8_t direction = outputs ? reg::sm::kDirectionEcatWrites : reg::sm::kDirectionEcatReads;
-  if ((ch.control & reg::sm::kModeMask) != reg::sm::kModeBuffered ||
+  if ((check_mode && (ch.control & reg::sm::kModeMask) != reg::sm::kModeBuffered) ||
       (ch.control & reg::sm::kDirectionMask) != direction) {
     return PdSmFault::Control;
   }

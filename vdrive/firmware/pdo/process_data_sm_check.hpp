@@ -27,8 +27,9 @@ std::string_view describe(PdSmFault fault);
 
 // `sm` carries outputs (master writes) or inputs (master reads); `sms` indexed by SM number;
 // process RAM is [0x1000, ram_end).
+// With `check_mode` the control byte must select 3-buffer mode as well as the direction.
 PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, bool outputs, std::uint16_t mapped_bytes,
-                                std::uint32_t ram_end);
+                                std::uint32_t ram_end, bool check_mode = true);
 // SM2 outputs, SM3 inputs.
 inline PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, std::uint16_t mapped_bytes,
                                        std::uint32_t ram_end) {
