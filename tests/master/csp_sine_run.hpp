@@ -11,6 +11,7 @@
 #include "master/cia402_program.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
+#include "tests/master/virtual_line.hpp"
 
 namespace vdrive::master::test {
 
@@ -56,6 +57,16 @@ inline void expect_drive_followed(const CspSineRun& run, std::size_t i, const st
   EXPECT_GE(r.samples, 900u) << describe(r);
   EXPECT_GT(r.max_following_error, 0) << describe(r) << ": a moving axis lags a little";
   EXPECT_LE(r.max_following_error, r.following_window) << describe(r);
+}
+
+// A line of one drive: scanned, taken to Op and following a 1 s csp sine.
+inline void expect_lone_drive_follows_csp_sine(VirtualLine& line) {
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 1u);
+  master.set_mailbox_timeout(20'000'000);
+  const CspSineRun run = run_csp_sine_at_1ms(master, 1'000'000'000);
+  ASSERT_EQ(run.drives.size(), 1u);
+  expect_drive_followed(run, 0, [&] { return line.network().esc(0).peek_u16(0x0134); });
 }
 
 }  // namespace vdrive::master::test

@@ -35,13 +35,7 @@ TEST(EsiDevice, ScansWithTheIdentityAndPdosOfItsFile) {
 
 TEST(EsiDevice, MasterTakesItToOpAndItFollowsInCsp) {
   test::VirtualLine line({kServo});
-  Master master{line, line.clock()};
-  ASSERT_EQ(master.scan(), 1u);
-  master.set_mailbox_timeout(20'000'000);
-
-  const test::CspSineRun run = test::run_csp_sine_at_1ms(master, 1'000'000'000);
-  ASSERT_EQ(run.drives.size(), 1u);
-  test::expect_drive_followed(run, 0, [&] { return line.network().esc(0).peek_u16(0x0134); });
+  test::expect_lone_drive_follows_csp_sine(line);
 }
 
 // The file's PDO rules hold: 1600h and 1601h exclude each other, 1A00h is mandatory. An assignment

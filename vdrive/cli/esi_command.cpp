@@ -5,13 +5,12 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <memory>
 #include <string>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/output_file.hpp"
 #include "vdrive/cli/product_source.hpp"
 #include "vdrive/esi/esi_export.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
@@ -28,13 +27,6 @@ struct EsiCommandOptions {
   bool eeprom_image = false;
 };
 
-void write_file(const std::string& path, const std::string& text) {
-  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), &std::fclose);
-  if (!f) throw CliError(kExitFailure, fmt::format("-o: cannot write '{}': {}", path, std::strerror(errno)));
-  if (std::fwrite(text.data(), 1, text.size(), f.get()) != text.size() || std::fflush(f.get()) != 0)
-    throw CliError(kExitFailure, fmt::format("-o: writing '{}' failed: {}", path, std::strerror(errno)));
-}
-
 void run(const EsiCommandOptions& o) {
   const ProductSource source = load_product_source(o.drive, o.profile_dir);
   const profile::ProductProfile& p = source.profile;
@@ -46,7 +38,7 @@ void run(const EsiCommandOptions& o) {
   if (o.output.empty() || o.output == "-") {
     std::fwrite(xml.data(), 1, xml.size(), stdout);
   } else {
-    write_file(o.output, xml);
+    write_output_file(o.output, xml);
   }
 }
 

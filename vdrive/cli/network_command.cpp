@@ -3,15 +3,14 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/exit_codes.hpp"
+#include "vdrive/cli/output_file.hpp"
 #include "vdrive/machine/eni_reader.hpp"
 
 namespace vdrive::cli {
@@ -36,10 +35,7 @@ void run(const NetworkCommandOptions& o) {
     std::fwrite(yaml.data(), 1, yaml.size(), stdout);
     return;
   }
-  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(o.output.c_str(), "wb"), &std::fclose);
-  if (!f) throw CliError(kExitFailure, fmt::format("-o: cannot write '{}': {}", o.output, std::strerror(errno)));
-  if (std::fwrite(yaml.data(), 1, yaml.size(), f.get()) != yaml.size() || std::fflush(f.get()) != 0)
-    throw CliError(kExitFailure, fmt::format("-o: writing '{}' failed: {}", o.output, std::strerror(errno)));
+  write_output_file(o.output, yaml);
 }
 
 }  // namespace

@@ -5,14 +5,13 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/output_file.hpp"
 #include "vdrive/cli/product_source.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/profile/sii_image.hpp"
@@ -26,13 +25,6 @@ struct SiiCommandOptions {
   std::string profile_dir;
   bool hex = false;
 };
-
-void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), &std::fclose);
-  if (!f) throw CliError(kExitFailure, fmt::format("-o: cannot write '{}': {}", path, std::strerror(errno)));
-  if (std::fwrite(bytes.data(), 1, bytes.size(), f.get()) != bytes.size() || std::fflush(f.get()) != 0)
-    throw CliError(kExitFailure, fmt::format("-o: writing '{}' failed: {}", path, std::strerror(errno)));
-}
 
 // 16 bytes a line, each line starting with its SII word address (the unit EEPROM tools and
 // ETG.1000.6 use): "0008: 6f 06 00 00 ...".
@@ -50,7 +42,7 @@ void run(const SiiCommandOptions& o) {
     throw CliError(kExitBadArguments, "give either -o FILE (binary image) or --hex (hex dump on stdout)");
   const std::vector<std::uint8_t> image = load_product_source(o.drive, o.profile_dir).sii_image;
   if (o.hex) print_hex(image);
-  else write_file(o.output, image);
+  else write_output_file(o.output, image);
 }
 
 }  // namespace

@@ -146,8 +146,8 @@ void pdos(const EsiDevice& d, ProductProfile& p) {
       r.fixed = pdo.fixed;
       const od::EntryDesc* count = find_entry(d.objects, pdo.index, 0);
       std::size_t entries = pdo.entries.size();
-      for (const od::ObjectDesc& o : d.objects)
-        if (o.index == pdo.index) entries = std::max<std::size_t>(entries, o.max_subindex());
+      if (const od::ObjectDesc* o = find_object(d.objects, pdo.index))
+        entries = std::max<std::size_t>(entries, o->max_subindex());
       if (count != nullptr && count->max) entries = std::max<std::size_t>(entries, static_cast<std::size_t>(*count->max));
       r.max_entries = static_cast<std::uint8_t>(std::min<std::size_t>(entries, 255));
       r.mandatory = pdo.mandatory;
@@ -164,9 +164,8 @@ void pdos(const EsiDevice& d, ProductProfile& p) {
     if (pdo.sm) p.tx_pdos.push_back(pdo_spec(pdo, d.objects));
   // How many PDOs 1C12h/1C13h take: their subindexes, else every PDO of the file.
   auto assignable = [&](std::uint16_t index, std::size_t pdo_count) {
-    std::size_t n = pdo_count;
-    for (const od::ObjectDesc& o : d.objects)
-      if (o.index == index) n = std::max<std::size_t>(o.max_subindex(), 1);
+    const od::ObjectDesc* o = find_object(d.objects, index);
+    const std::size_t n = o != nullptr ? std::max<std::size_t>(o->max_subindex(), 1) : pdo_count;
     return static_cast<std::uint8_t>(std::min<std::size_t>(n, 255));
   };
   p.pdo_rules.max_rx_assigned = assignable(0x1C12, d.rx_pdos.size());

@@ -33,10 +33,15 @@ AlarmSpec alarm(const char* code, const char* name, std::uint16_t error_code, Al
 
 }  // namespace
 
-const od::EntryDesc* find_entry(const std::vector<od::ObjectDesc>& objects, std::uint16_t index, std::uint8_t subindex) {
+const od::ObjectDesc* find_object(const std::vector<od::ObjectDesc>& objects, std::uint16_t index) {
   const auto it = std::lower_bound(objects.begin(), objects.end(), index,
                                    [](const od::ObjectDesc& o, std::uint16_t i) { return o.index < i; });
-  return it != objects.end() && it->index == index ? it->entry(subindex) : nullptr;
+  return it != objects.end() && it->index == index ? &*it : nullptr;
+}
+
+const od::EntryDesc* find_entry(const std::vector<od::ObjectDesc>& objects, std::uint16_t index, std::uint8_t subindex) {
+  const od::ObjectDesc* o = find_object(objects, index);
+  return o != nullptr ? o->entry(subindex) : nullptr;
 }
 
 std::uint64_t default_of(const std::vector<od::ObjectDesc>& objects, std::uint16_t index, std::uint8_t subindex,

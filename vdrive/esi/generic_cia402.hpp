@@ -17,6 +17,8 @@ bool is_cia402_drive(std::uint32_t profile_no, const std::vector<od::ObjectDesc>
 // Fills the drive sections of `product` (modes, homing, touch_probe, drive, alarms, motors).
 void apply_generic_cia402(profile::ProductProfile& product, const std::vector<od::ObjectDesc>& objects);
 
+// The object `index` of `objects` (sorted by index), or nullptr.
+const od::ObjectDesc* find_object(const std::vector<od::ObjectDesc>& objects, std::uint16_t index);
 // The entry index:subindex of `objects` (sorted by index), or nullptr.
 const od::EntryDesc* find_entry(const std::vector<od::ObjectDesc>& objects, std::uint16_t index, std::uint8_t subindex);
 // Its default value as an unsigned integer (little-endian, at most 8 bytes); `otherwise` without one.
