@@ -124,6 +124,8 @@ struct Plant::Impl {
     AxisCommand cmd;
     double ext_load = 0;
     std::uint32_t ext_inputs = 0;
+    std::uint32_t sensor_inputs = 0;  // the switches as of the last step
+    std::optional<bool> brake_control;  // released, when something other than the drive drives the coil
     AxisFeedback fb;
     AxisFaults faults;
     double lock_at = 0;           // jam: the load position held
@@ -439,7 +441,8 @@ void Plant::Impl::substep(double t) {
     a.torque = torque;
     a.loss_j += a.current * a.current * m.winding_resistance_ohm * dt;
 
-    const bool braked = a.spec.brake.fitted && !a.cmd.brake_released && !a.faults.brake_failure;
+    const bool released = a.brake_control.value_or(a.cmd.brake_released);
+    const bool braked = a.spec.brake.fitted && !released && !a.faults.brake_failure;
     const double ext = load_at(a.spec.load_profile, t) + a.ext_load + a.faults.added_force;
     double load_force = ext - a.spec.friction.viscous * j.vel;
     double dry = dry_friction(a.spec.friction, std::abs(j.vel));
@@ -626,13 +629,14 @@ void Plant::Impl::finish_step() {
     const SwitchSpec& sw = a.spec.switches;
     const double q = j.pos;
     auto inside = [q](const std::optional<PositionWindow>& w) { return w && q >= w->from && q <= w->to; };
-    std::uint32_t in = a.ext_inputs;
+    std::uint32_t in = 0;
     if (sw.negative_limit && q <= *sw.negative_limit) in |= input::negative_limit;
     if (sw.positive_limit && q >= *sw.positive_limit) in |= input::positive_limit;
     if (inside(sw.home)) in |= input::home;
     if (inside(sw.probe1)) in |= input::probe1;
     if (inside(sw.probe2)) in |= input::probe2;
-    fb.inputs = in;
+    a.sensor_inputs = in;
+    fb.inputs = in | a.ext_inputs;
 
     constexpr double stop_tolerance = 1e-4;
     if (fb.winding_c > m.winding_limit_c) fb.faults |= fault::overtemperature;
@@ -692,7 +696,17 @@ Nanos Plant::time() const { return impl_->steps * impl_->step_ns; }
 double Plant::step_s() const { return impl_->desc.step_s; }
 
 void Plant::set_external_load(std::size_t axis, double force) { impl_->axes.at(axis).ext_load = force; }
-void Plant::set_external_input(std::size_t axis, std::uint32_t bits) { impl_->axes.at(axis).ext_inputs = bits; }
+// Takes effect in the feedback at once, as a switch wired in parallel to the sensor would.
+void Plant::set_external_input(std::size_t axis, std::uint32_t bits) {
+  auto& a = impl_->axes.at(axis);
+  a.ext_inputs = bits;
+  a.fb.inputs = a.sensor_inputs | bits;
+}
+std::uint32_t Plant::external_input(std::size_t axis) const { return impl_->axes.at(axis).ext_inputs; }
+const AxisCommand& Plant::last_command(std::size_t axis) const { return impl_->axes.at(axis).cmd; }
+void Plant::set_brake_control(std::size_t axis, std::optional<bool> released) {
+  impl_->axes.at(axis).brake_control = released;
+}
 void Plant::clear_faults(std::size_t axis) { impl_->axes.at(axis).fb.faults = 0; }
 
 void Plant::set_axis_faults(std::size_t axis, const AxisFaults& f) {

@@ -89,6 +89,11 @@ public:
   // Fault injection and test hooks.
   void set_external_load(std::size_t axis, double force);  // added to the load profile
   void set_external_input(std::size_t axis, std::uint32_t input_bits);  // ORed into inputs
+  std::uint32_t external_input(std::size_t axis) const;
+  // The coil of the holding brake driven from outside the drive (a PLC output wired to it):
+  // true = released, false = engaged; nullopt = the drive's AxisCommand::brake_released again.
+  void set_brake_control(std::size_t axis, std::optional<bool> released);
+  const AxisCommand& last_command(std::size_t axis) const;  // as the drive last gave it
   void clear_faults(std::size_t axis);
   // Machine faults of an axis (axis_faults.hpp); throws PlantError for a load_scale <= 0, values
   // that are not finite, or a scaled load that makes a compliant transmission too stiff for the step.

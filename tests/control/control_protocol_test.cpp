@@ -68,6 +68,37 @@ TEST(ControlProtocol, OtherOps) {
   EXPECT_EQ(c.id, 3);
 }
 
+TEST(ControlProtocol, SignalOps) {
+  EXPECT_EQ(parse_request(R"({"op":"signals"})").op, Op::signals);
+  const ControlRequest get = parse_request(R"({"op":"signal_get","signal":"di 0x6000:1"})");
+  EXPECT_EQ(get.op, Op::signal_get);
+  EXPECT_EQ(get.signal, "di 0x6000:1");
+  const ControlRequest set = parse_request(R"({"op":"signal_set","signal":"door","value":-7})");
+  EXPECT_EQ(set.op, Op::signal_set);
+  EXPECT_EQ(set.signal, "door");
+  EXPECT_EQ(set.value, -7);
+  EXPECT_EQ(parse_request(R"({"op":"signal_set","signal":"x.home","value":true})").value, 1);
+  EXPECT_THAT(refusal(R"({"op":"signal_get"})"), HasSubstr("\"signal\" must name a signal"));
+  EXPECT_THAT(refusal(R"({"op":"signal_set","signal":"door"})"), HasSubstr("\"value\" is missing"));
+  EXPECT_THAT(refusal(R"({"op":"signal_set","signal":"door","value":"1"})"),
+              HasSubstr("\"value\": expected an integer or true/false, got \"1\""));
+  EXPECT_THAT(refusal(R"({"op":"signal_get","signal":"door","value":1})"),
+              HasSubstr("\"value\" does not belong in a \"signal_get\" request"));
+}
+
+TEST(ControlProtocol, SignalRepliesComeBackAsSent) {
+  ControlReply reply;
+  reply.signals.push_back({"door", "di 0x6000:2", "BOOL", 1});
+  reply.signals.push_back({"x 0x6060:0", "x 0x6060:0", "I8", -3});
+  const ControlReply back = parse_reply(format_reply(reply));
+  ASSERT_EQ(back.signals.size(), 2u);
+  EXPECT_EQ(back.signals[0].name, "door");
+  EXPECT_EQ(back.signals[0].point, "di 0x6000:2");
+  EXPECT_EQ(back.signals[0].type, "BOOL");
+  EXPECT_EQ(back.signals[0].value, 1);
+  EXPECT_EQ(back.signals[1].value, -3);
+}
+
 TEST(ControlProtocol, RefusalsNameWhatWasWrong) {
   EXPECT_THAT(refusal("{"), HasSubstr("not a JSON request"));
   EXPECT_THAT(refusal("[1]"), HasSubstr("JSON object"));

@@ -72,13 +72,44 @@ TEST(NetworkFile, AnImpossiblePortIsNamed) {
   EXPECT_NE(e.find("port 3"), std::string::npos) << e;
 }
 
-TEST(NetworkFile, AWireNamesASlaveAndAnEntry) {
-  EXPECT_NE(error_of("slaves:\n  - {name: a, device: a6b}\nwires:\n  - {from: a 0x6041:0, to: b 0x6040:0}\n")
-                .find("n.yaml:4: wires[0].to: no slave 'b'"),
-            std::string::npos);
-  EXPECT_NE(error_of("slaves:\n  - {name: a, device: a6b}\nwires:\n  - {from: a 6041, to: a 0x6040:0}\n")
-                .find("expected SLAVE INDEX:SUBINDEX"),
-            std::string::npos);
+TEST(NetworkFile, AWireNamesASlaveAndAnEntryOrAConnection) {
+  EXPECT_EQ(error_of("slaves:\n  - {name: a, device: a6b}\nwires:\n  - {from: a 0x6041:0, to: b 0x6040:0}\n"),
+            "n.yaml:4: wires[0].to: 'b 0x6040:0': no slave 'b' (names: a; or a position 1-1)");
+  EXPECT_EQ(error_of("slaves:\n  - {name: a, device: a6b}\nwires:\n  - {from: a 6041, to: a 0x6040:0}\n"),
+            "n.yaml:4: wires[0].from: 'a 6041': the entry is INDEX:SUBINDEX, e.g. 0x7000:1");
+  EXPECT_EQ(error_of("slaves:\n  - {name: a, device: a6b}\nwires:\n  - {from: a.hom, to: a 0x6040:0}\n"),
+            "n.yaml:4: wires[0].from: 'a.hom': no plant connection 'hom' (connections: negative_limit, "
+            "positive_limit, home, probe1, probe2, brake_release)");
+  EXPECT_EQ(error_of("slaves:\n  - {name: a, device: a6b}\nwires:\n  - {from: a.home, to: a.home}\n"),
+            "n.yaml:4: wires[0]: 'from' and 'to' are the same point");
+}
+
+TEST(NetworkFile, PlantConnectionsAndNamedSignals) {
+  const machine::NetworkFile f = machine::parse_network_file(
+      "slaves:\n  - {name: x, device: a6b}\n  - {name: y, device: ds5c1}\nwires:\n"
+      "  - {from: x.positive_limit, to: y.probe1}\nsignals:\n  limit: x.positive_limit\n  y_mode: y 0x6060:0\n",
+      "n.yaml", ".");
+  ASSERT_EQ(f.wires.size(), 1u);
+  EXPECT_EQ(f.wires[0].from.plant, network::PlantConnection::positive_limit);
+  EXPECT_EQ(f.wires[0].to.slave, 1u);
+  EXPECT_EQ(f.wires[0].to.plant, network::PlantConnection::probe1);
+  ASSERT_EQ(f.signals.size(), 2u);
+  EXPECT_EQ(f.signals[0].name, "limit");
+  EXPECT_EQ(f.signals[0].origin, "n.yaml:7");
+  EXPECT_EQ(f.signals[1].point, (network::SignalPoint{1, std::nullopt, 0x6060, 0}));
+  const network::NetworkOptions o = machine::network_options(f);
+  EXPECT_EQ(o.slave_names, (std::vector<std::string>{"x", "y"}));
+  EXPECT_EQ(o.signals.size(), 2u);
+  EXPECT_EQ(o.wires.size(), 1u);
+}
+
+TEST(NetworkFile, SignalNamesAreChecked) {
+  EXPECT_EQ(error_of("slaves:\n  - {name: x, device: a6b}\nsignals:\n  9lives: x.home\n"),
+            "n.yaml:4: signals: '9lives' is not a signal name (letters, digits, '_' and '-', not starting with a digit)");
+  EXPECT_EQ(error_of("slaves:\n  - {name: x, device: a6b}\nsignals:\n  door: x 0x6000\n"),
+            "n.yaml:4: signals.door: 'x 0x6000': the entry is INDEX:SUBINDEX, e.g. 0x7000:1");
+  EXPECT_EQ(error_of("slaves:\n  - {name: x, device: a6b}\nsignals: [x.home]\n"),
+            "n.yaml:3: signals: expected a mapping NAME: POINT (SLAVE INDEX:SUB or SLAVE.CONNECTION)");
 }
 
 TEST(NetworkFile, NamesAreUnique) {

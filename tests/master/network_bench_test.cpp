@@ -26,13 +26,7 @@ struct Bench {
     for (const machine::NetworkSlave& s : file.slaves) d.push_back(s.device);
     return d;
   }
-  network::NetworkOptions options() const {
-    network::NetworkOptions o;
-    o.topology = file.topology;
-    o.wires = file.wires;
-    for (const machine::NetworkSlave& s : file.slaves) o.station_aliases.push_back(s.alias);
-    return o;
-  }
+  network::NetworkOptions options() const { return machine::network_options(file); }
 };
 
 TEST(NetworkBench, TheMasterScansTheTreeInFrameOrder) {

@@ -144,6 +144,39 @@ TEST(PlantMotion, HoldingBrakeHoldsTheLoadWithNoTorque) {
   EXPECT_LT(p.feedback(0).load_velocity, -0.01);
 }
 
+// A coil driven from outside the drive (a PLC output wired to it) overrides the drive's command
+// until control goes back to the drive.
+TEST(PlantMotion, BrakeDrivenFromOutsideOverridesTheDrivesCommand) {
+  Plant p(vertical_axis());
+  AxisCommand c;
+  c.brake_released = false;
+  p.set_brake_control(0, true);
+  run(p, 0.1, c);
+  EXPECT_LT(p.feedback(0).load_velocity, -0.01) << "released from outside: the carriage falls";
+  EXPECT_FALSE(p.last_command(0).brake_released) << "what the drive commands is still its own";
+  p.set_brake_control(0, std::nullopt);
+  run(p, 0.5, c);
+  EXPECT_NEAR(p.feedback(0).load_velocity, 0.0, 1e-4) << "the drive's brake holds again";
+  c.brake_released = true;
+  p.set_brake_control(0, false);
+  const double at = p.feedback(0).load_position;
+  run(p, 0.5, c);
+  EXPECT_LT(std::abs(p.feedback(0).load_position - at), 1e-6) << "engaged from outside: held";
+}
+
+TEST(PlantMotion, ExternalInputsAreReadBackAndOredWithTheSensors) {
+  PlantDescription d = vertical_axis();
+  d.axes[0].switches.home = PositionWindow{0.1, 0.2};
+  Plant p(d);
+  p.set_external_input(0, input::home | input::probe1);
+  EXPECT_EQ(p.external_input(0), input::home | input::probe1);
+  run(p, 0.01, torque(0.0));
+  EXPECT_EQ(p.feedback(0).inputs & (input::home | input::probe1), input::home | input::probe1);
+  p.set_external_input(0, 0);
+  run(p, 0.01, torque(0.0));
+  EXPECT_EQ(p.feedback(0).inputs & (input::home | input::probe1), 0u);
+}
+
 TEST(PlantMotion, EndStopStopsTheLoadAndIsReported) {
   PlantDescription d = vertical_axis();
   d.axes[0].switches.positive_limit = 0.35;

@@ -9,56 +9,16 @@
 #include <string>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/control_client.hpp"
 #include "vdrive/cli/fault_inject_options.hpp"
-#include "vdrive/control/control_protocol.hpp"
-#include "vdrive/control/control_socket.hpp"
 #include "vdrive/fault/fault_spec.hpp"
 
 namespace vdrive::cli {
 namespace {
 
-constexpr Nanos kReplyTimeout = 5'000'000'000;
+using Target = ControlTarget;
 
-struct Target {
-  std::string iface;
-  std::string control;
-  bool json = false;  // print the reply line as it came
-};
-
-std::string path_of(const Target& t) {
-  if (!t.control.empty()) return t.control;
-  if (t.iface.empty()) throw CliError(kExitBadArguments, "fault: --iface IF (the interface vdrive run serves) or --control PATH is required");
-  return control::default_control_path(t.iface);
-}
-
-// Sends one request; returns the reply if it succeeded, else ends with the reply's error.
-control::ControlReply request(const Target& t, const nlohmann::json& req) {
-  const std::string path = path_of(t);
-  std::string line;
-  try {
-    line = control::control_call(path, req.dump(), kReplyTimeout);
-  } catch (const control::ControlSocketError& e) {
-    const bool denied = e.kind() == control::ControlSocketError::Kind::not_permitted;
-    throw CliError(denied ? kExitNotPermitted : kExitFailure,
-                   e.kind() == control::ControlSocketError::Kind::no_server
-                       ? fmt::format("no vdrive serves {}: {}", t.control.empty() ? t.iface : t.control, e.what())
-                       : std::string(e.what()));
-  }
-  control::ControlReply reply;
-  try {
-    reply = control::parse_reply(line);
-  } catch (const control::ProtocolError& e) {
-    throw CliError(kExitFailure, e.what());
-  }
-  if (t.json) fmt::print("{}\n", line);
-  switch (reply.status) {
-    case control::ControlReply::Status::ok: return reply;
-    case control::ControlReply::Status::bad_request: throw CliError(kExitBadArguments, reply.error);
-    case control::ControlReply::Status::denied: throw CliError(kExitNotPermitted, reply.error);
-    case control::ControlReply::Status::failed: break;
-  }
-  throw CliError(kExitFailure, reply.error);
-}
+control::ControlReply request(const Target& t, const nlohmann::json& req) { return control_request(t, req, "fault"); }
 
 std::string duration_text(Nanos ns) {
   if (ns % 1'000'000'000 == 0) return fmt::format("{}s", ns / 1'000'000'000);
@@ -99,12 +59,6 @@ void kinds() {
     fmt::print("{:<16} {:<8} {}{}\n", i.name, fault::name(i.layer), i.summary, i.one_shot ? " (one-shot)" : "");
 }
 
-void add_target(CLI::App* cmd, Target& t) {
-  cmd->add_option("--iface,-i", t.iface, "Interface (or TAP) the vdrive run to control serves");
-  cmd->add_option("--control", t.control, "Control socket of that vdrive run, if it was given --control");
-  cmd->add_flag("--json", t.json, "Print the server's JSON reply line");
-}
-
 }  // namespace
 
 void add_fault_command(CLI::App& app) {
@@ -114,20 +68,20 @@ void add_fault_command(CLI::App& app) {
   auto t = std::make_shared<Target>();
   auto o = std::make_shared<FaultInjectOptions>();
   CLI::App* inj = cmd->add_subcommand("inject", "Start a fault now (vdrive fault kinds lists them)");
-  add_target(inj, *t);
+  add_control_target(inj, *t);
   add_fault_inject_options(inj, *o);
   inj->callback([t, o] { inject(*t, *o); });
 
   auto id = std::make_shared<int>(0);
   auto all = std::make_shared<bool>(false);
   CLI::App* clr = cmd->add_subcommand("clear", "End a fault by its id, or all of them");
-  add_target(clr, *t);
+  add_control_target(clr, *t);
   clr->add_option("id", *id, "Fault id (from inject or list)")->check(CLI::PositiveNumber);
   clr->add_flag("--all", *all, "End every active fault");
   clr->callback([t, id, all] { clear(*t, *id, *all); });
 
   CLI::App* lst = cmd->add_subcommand("list", "Active faults: id, description, time active and left");
-  add_target(lst, *t);
+  add_control_target(lst, *t);
   lst->callback([t] { list(*t); });
 
   cmd->add_subcommand("kinds", "The fault catalogue: kind, layer, what it does")->callback(kinds);

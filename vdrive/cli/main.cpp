@@ -22,6 +22,7 @@
 #include "vdrive/cli/plot_command.hpp"
 #include "vdrive/cli/run_command.hpp"
 #include "vdrive/cli/scenario_command.hpp"
+#include "vdrive/cli/signal_command.hpp"
 #include "vdrive/cli/sii_command.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/cli/telemetry_command.hpp"
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
   add_sii_command(app);
   add_scenario_command(app);
   add_fault_command(app);
+  add_signal_command(app);
   add_plot_command(app);
   add_telemetry_command(app);
   // After every subcommand (add new ones above): each gets --log-level and its help footer.

@@ -192,23 +192,24 @@ std::unique_ptr<link::Link> open_link(const RunOptions& o) {
 }
 
 // The rest of a network file: per-slave plants (read as --plant reads them), station aliases,
-// topology and wires.
+// identities, names, topology, wires and signals.
 void apply_network_file(const RunOptions& o, network::NetworkOptions& options) {
   const machine::NetworkFile& f = o.network;
+  const network::NetworkOptions from_file = machine::network_options(f);
+  options.station_aliases = from_file.station_aliases;
+  options.identities = from_file.identities;
+  options.slave_names = from_file.slave_names;
+  options.topology = from_file.topology;
+  options.wires = from_file.wires;
+  options.signals = from_file.signals;
   options.plants.assign(f.slaves.size(), std::nullopt);
-  options.station_aliases.assign(f.slaves.size(), std::nullopt);
-  options.identities.assign(f.slaves.size(), std::nullopt);
   for (std::size_t i = 0; i < f.slaves.size(); ++i) {
     const machine::NetworkSlave& s = f.slaves[i];
-    options.station_aliases[i] = s.alias;
-    options.identities[i] = s.identity;
     if (s.plant_file.empty()) continue;
     RunOptions one = o;
     one.plants = {fmt::format("{}:{}", i, s.plant_file)};
     options.plants[i] = load_plants(one)[i];
   }
-  options.topology = f.topology;
-  options.wires = f.wires;
 }
 
 void run(RunOptions o) {

@@ -118,17 +118,23 @@ ControlRequest parse_request(std::string_view line) {
     fail(fmt::format("not a JSON request: {}", e.what()));
   }
   if (!j.is_object()) fail("a request is a JSON object with an \"op\"");
-  if (!j.contains("op") || !j.at("op").is_string()) fail("\"op\" is missing (inject, clear, clear_all, list)");
+  constexpr std::string_view kOps = "inject, clear, clear_all, list, signal_get, signal_set, signals";
+  if (!j.contains("op") || !j.at("op").is_string()) fail(fmt::format("\"op\" is missing ({})", kOps));
   const std::string op = j.at("op").get<std::string>();
-  const std::set<std::string> allowed = op == "inject" ? std::set<std::string>{"op", "fault"}
-                                        : op == "clear" ? std::set<std::string>{"op", "id"}
-                                                        : std::set<std::string>{"op"};
+  const std::set<std::string> allowed = op == "inject"       ? std::set<std::string>{"op", "fault"}
+                                        : op == "clear"      ? std::set<std::string>{"op", "id"}
+                                        : op == "signal_get" ? std::set<std::string>{"op", "signal"}
+                                        : op == "signal_set" ? std::set<std::string>{"op", "signal", "value"}
+                                                             : std::set<std::string>{"op"};
   ControlRequest r;
   if (op == "inject") r.op = ControlRequest::Op::inject;
   else if (op == "clear") r.op = ControlRequest::Op::clear;
   else if (op == "clear_all") r.op = ControlRequest::Op::clear_all;
   else if (op == "list") r.op = ControlRequest::Op::list;
-  else fail(fmt::format("unknown op \"{}\" (inject, clear, clear_all, list)", op));
+  else if (op == "signal_get") r.op = ControlRequest::Op::signal_get;
+  else if (op == "signal_set") r.op = ControlRequest::Op::signal_set;
+  else if (op == "signals") r.op = ControlRequest::Op::signals;
+  else fail(fmt::format("unknown op \"{}\" ({})", op, kOps));
   for (const auto& [key, value] : j.items()) {
     if (!allowed.contains(key)) fail(fmt::format("\"{}\" does not belong in a \"{}\" request", key, op));
   }
@@ -140,6 +146,17 @@ ControlRequest parse_request(std::string_view line) {
         j.at("id").get<std::int64_t>() > std::numeric_limits<int>::max())
       fail("\"id\" must be the id of an active fault (an integer from 1)");
     r.id = j.at("id").get<int>();
+  } else if (r.op == ControlRequest::Op::signal_get || r.op == ControlRequest::Op::signal_set) {
+    if (!j.contains("signal") || !j.at("signal").is_string() || j.at("signal").get<std::string>().empty())
+      fail("\"signal\" must name a signal of the network file or a point (\"di 0x6000:1\", \"x.home\")");
+    r.signal = j.at("signal").get<std::string>();
+    if (r.op == ControlRequest::Op::signal_set) {
+      if (!j.contains("value")) fail("\"value\" is missing from the signal_set request");
+      const json& v = j.at("value");
+      if (v.is_boolean()) r.value = v.get<bool>() ? 1 : 0;
+      else if (v.is_number_integer()) r.value = v.get<std::int64_t>();
+      else fail(fmt::format("\"value\": expected an integer or true/false, got {}", v.dump()));
+    }
   }
   return r;
 }
@@ -161,6 +178,12 @@ std::string format_reply(const ControlReply& reply) {
     faults.push_back(std::move(o));
   }
   j["faults"] = std::move(faults);
+  if (!reply.signals.empty()) {
+    json signals = json::array();
+    for (const SignalStatus& s : reply.signals)
+      signals.push_back({{"name", s.name}, {"point", s.point}, {"type", s.type}, {"value", s.value}});
+    j["signals"] = std::move(signals);
+  }
   return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
@@ -182,6 +205,10 @@ ControlReply parse_reply(std::string_view line) {
       const json& rem = f.at("remaining_ns");
       r.faults.push_back({f.at("id").get<int>(), f.at("kind").get<std::string>(), f.at("description").get<std::string>(),
                           f.at("elapsed_ns").get<Nanos>(), rem.is_null() ? Nanos{-1} : rem.get<Nanos>()});
+    }
+    for (const json& s : j.value("signals", json::array())) {
+      r.signals.push_back({s.at("name").get<std::string>(), s.at("point").get<std::string>(),
+                           s.at("type").get<std::string>(), s.at("value").get<std::int64_t>()});
     }
     return r;
   } catch (const json::exception& e) {

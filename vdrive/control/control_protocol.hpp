@@ -3,6 +3,8 @@
 // control"). Requests:
 //   {"op":"inject","fault":{"kind":"drop","probability":0.5,"duration":"100ms"}}
 //   {"op":"clear","id":3}   {"op":"clear_all"}   {"op":"list"}
+//   {"op":"signal_get","signal":"door"}   {"op":"signal_set","signal":"x.home","value":1}
+//   {"op":"signals"}
 // The fault's fields are a scenario file's (kind, slave, port, duration, direction, probability,
 // delay, count, abort_code, code, position, load_scale, force), times as there ("250ms").
 // Replies: {"ok":true,...} or {"ok":false,"status":"bad_request|denied|failed","error":"..."}.

@@ -1,7 +1,8 @@
 #pragma once
 // What the runtime control channel carries between its thread and the event loop: a request
-// (inject a fault, clear one or all, list them) and its reply. Parsed from and formatted to
-// JSON lines by control_protocol.hpp; carried out by FaultService (fault_service.hpp).
+// (inject a fault, clear one or all, list them; read, set or list signals) and its reply. Parsed
+// from and formatted to JSON lines by control_protocol.hpp; carried out by FaultService
+// (fault_service.hpp), signals by signal_requests.hpp.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,10 +13,12 @@
 namespace vdrive::control {
 
 struct ControlRequest {
-  enum class Op : std::uint8_t { inject, clear, clear_all, list };
+  enum class Op : std::uint8_t { inject, clear, clear_all, list, signal_get, signal_set, signals };
   Op op = Op::list;
   fault::FaultSpec fault;  // inject
   int id = 0;              // clear
+  std::string signal;      // signal_get, signal_set: a named signal or a point ("di 0x6000:1", "x.home")
+  std::int64_t value = 0;  // signal_set
   std::uint64_t seq = 0;   // matches a reply to its request (set by FaultService::call)
 };
 
@@ -27,6 +30,13 @@ struct FaultStatus {
   Nanos remaining = -1;     // -1: until cleared
 };
 
+struct SignalStatus {
+  std::string name;         // the network file's name, or the point as it was asked for
+  std::string point;        // "di 0x6000:1", "x.home"
+  std::string type;         // "BOOL", "I16", "connection" (signal_access.hpp)
+  std::int64_t value = 0;
+};
+
 struct ControlReply {
   // Why a request failed: the caller's mistake (exit 2), a peer that may not control this vdrive
   // (exit 4), or the server (exit 1).
@@ -36,6 +46,7 @@ struct ControlReply {
   int id = 0;                        // inject: the new fault's id (0 for one-shot faults)
   int cleared = 0;                   // clear_all: how many
   std::vector<FaultStatus> faults;   // list
+  std::vector<SignalStatus> signals; // signal_get, signal_set (the value after the write), signals
   std::uint64_t seq = 0;
   bool ok() const { return status == Status::ok; }
 };

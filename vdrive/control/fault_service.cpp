@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "common/clock.hpp"
+#include "vdrive/control/signal_requests.hpp"
 #include "vdrive/fault/impaired_link.hpp"
 
 namespace vdrive::control {
@@ -20,7 +21,7 @@ constexpr Nanos kNever = std::numeric_limits<Nanos>::max();
 }
 
 FaultService::FaultService(network::Network& network, fault::WireImpairment* wire, fault::ImpairedLink* link)
-    : injector_(network, wire), link_(link) {
+    : network_(network), injector_(network, wire), link_(link) {
   reply_event_ = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
   if (reply_event_ < 0) throw std::runtime_error(fmt::format("eventfd: {}", std::strerror(errno)));
 }
@@ -50,6 +51,9 @@ void FaultService::poll(Nanos now) {
 }
 
 ControlReply FaultService::handle(const ControlRequest& r, Nanos now) {
+  if (r.op == ControlRequest::Op::signal_get || r.op == ControlRequest::Op::signal_set ||
+      r.op == ControlRequest::Op::signals)
+    return handle_signal_request(network_, r);
   ControlReply reply;
   try {
     switch (r.op) {
@@ -65,6 +69,10 @@ ControlReply FaultService::handle(const ControlRequest& r, Nanos now) {
         reply.cleared = static_cast<int>(injector_.active().size());
         injector_.clear_all(now);
         break;
+      case ControlRequest::Op::signal_get:
+      case ControlRequest::Op::signal_set:
+      case ControlRequest::Op::signals:
+        break;  // above
       case ControlRequest::Op::list:
         for (const fault::ActiveFault& f : injector_.active()) {
           reply.faults.push_back({f.id, std::string(fault::info(f.spec.kind).name), fault::describe(f.spec),

@@ -1,6 +1,6 @@
 #pragma once
-// FaultService: runtime fault control on the event loop's thread. Owns the FaultInjector of a
-// served network; other threads (the control socket's) hand it requests with call(), which the
+// FaultService: runtime control on the event loop's thread: faults (it owns the FaultInjector of
+// a served network) and signals (signal_requests.hpp). Other threads (the control socket's) hand it requests with call(), which the
 // loop picks up in poll() through a lock-free SPSC queue and answers through another, waking
 // the caller with an eventfd. poll() with nothing pending is one atomic load plus a deadline
 // compare; faults with a duration end at their deadline (next_deadline() joins the loop's).
@@ -44,6 +44,7 @@ public:
 private:
   void changed();
 
+  network::Network& network_;
   fault::FaultInjector injector_;
   fault::ImpairedLink* link_;
   runtime::SpscQueue<ControlRequest, 4> requests_;

@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <filesystem>
 #include <fstream>
@@ -113,30 +114,21 @@ std::size_t slave_ref(const Reader& r, const YAML::Node& n, const std::string& f
   r.fail(n, fmt::format("{}: no slave '{}' (names: {}; or a position 1-{})", field, s, names, f.slaves.size()));
 }
 
-// "NAME 0x7000:1" -> the slave and entry.
-network::WireEnd wire_end(const Reader& r, const YAML::Node& n, const std::string& field, const NetworkFile& f) {
+// "NAME 0x7000:1" or "NAME.home" -> the slave and the entry or plant connection.
+network::SignalPoint signal_point(const Reader& r, const YAML::Node& n, const std::string& field, const NetworkFile& f) {
   const std::string s = text(r, n, field);
-  const std::size_t space = s.find_last_of(' ');
-  const std::size_t colon = s.rfind(':');
-  if (space == std::string::npos || colon == std::string::npos || colon < space)
-    r.fail(n, fmt::format("{}: '{}': expected SLAVE INDEX:SUBINDEX, e.g. 'do 0x7000:1'", field, s));
-  network::WireEnd end;
-  const std::string name = s.substr(0, space);
-  bool found = false;
-  for (std::size_t i = 0; i < f.slaves.size(); ++i)
-    if (f.slaves[i].name == name) end.slave = i, found = true;
-  if (!found) {
-    const auto v = unsigned_number(name);
-    if (!v || *v < 1 || *v > f.slaves.size()) r.fail(n, fmt::format("{}: no slave '{}'", field, name));
-    end.slave = static_cast<std::size_t>(*v - 1);
+  std::vector<std::string> names;
+  for (const NetworkSlave& sl : f.slaves) names.push_back(sl.name);
+  try {
+    return network::parse_signal_point(s, names);
+  } catch (const std::invalid_argument& e) {
+    r.fail(n, fmt::format("{}: {}", field, e.what()));
   }
-  const auto index = unsigned_number(s.substr(space + 1, colon - space - 1));
-  const auto sub = unsigned_number(s.substr(colon + 1));
-  if (!index || *index > 0xFFFF || !sub || *sub > 0xFF)
-    r.fail(n, fmt::format("{}: '{}': the entry is INDEX:SUBINDEX, e.g. 0x7000:1", field, s));
-  end.index = static_cast<std::uint16_t>(*index);
-  end.subindex = static_cast<std::uint8_t>(*sub);
-  return end;
+}
+
+bool is_identifier(const std::string& s) {
+  return !s.empty() && !std::isdigit(static_cast<unsigned char>(s[0])) &&
+         std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; });
 }
 
 }  // namespace
@@ -150,8 +142,8 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
   } catch (const YAML::Exception& e) {
     throw NetworkFileError(fmt::format("{}:{}: not YAML: {}", file, e.mark.line + 1, e.msg));
   }
-  if (!root.IsMap()) r.fail(root, "expected a mapping with 'slaves' (and 'wires')");
-  r.only_keys(root, "(top level)", {"slaves", "wires"});
+  if (!root.IsMap()) r.fail(root, "expected a mapping with 'slaves' (and 'wires', 'signals')");
+  r.only_keys(root, "(top level)", {"slaves", "wires", "signals"});
   const YAML::Node slaves = root["slaves"];
   if (!slaves || !slaves.IsSequence() || slaves.size() == 0) r.fail(root, "slaves: expected a list of at least one slave");
 
@@ -235,7 +227,7 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
   }
 
   if (const YAML::Node wires = root["wires"]) {
-    if (!wires.IsSequence()) r.fail(wires, "wires: expected a list of {from: SLAVE INDEX:SUB, to: SLAVE INDEX:SUB}");
+    if (!wires.IsSequence()) r.fail(wires, "wires: expected a list of {from: POINT, to: POINT} (SLAVE INDEX:SUB or SLAVE.CONNECTION)");
     for (std::size_t i = 0; i < wires.size(); ++i) {
       const YAML::Node w = wires[i];
       const std::string where = fmt::format("wires[{}]", i);
@@ -243,13 +235,43 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
       r.only_keys(w, where, {"from", "to"});
       if (!w["from"] || !w["to"]) r.fail(w, where + ": needs 'from' and 'to'");
       network::SignalWire sw;
-      sw.from = wire_end(r, w["from"], where + ".from", f);
-      sw.to = wire_end(r, w["to"], where + ".to", f);
+      sw.from = signal_point(r, w["from"], where + ".from", f);
+      sw.to = signal_point(r, w["to"], where + ".to", f);
+      if (sw.from == sw.to) r.fail(w, where + ": 'from' and 'to' are the same point");
       sw.name = fmt::format("{}:{}: {} ({} -> {})", file, w.Mark().line + 1, where, w["from"].Scalar(), w["to"].Scalar());
       f.wires.push_back(std::move(sw));
     }
   }
+
+  if (const YAML::Node signals = root["signals"]) {
+    if (!signals.IsMap()) r.fail(signals, "signals: expected a mapping NAME: POINT (SLAVE INDEX:SUB or SLAVE.CONNECTION)");
+    for (const auto& kv : signals) {
+      const std::string name = kv.first.Scalar();
+      if (!is_identifier(name))
+        r.fail(kv.first, fmt::format("signals: '{}' is not a signal name (letters, digits, '_' and '-', not starting with a digit)", name));
+      for (const network::NamedSignal& other : f.signals)
+        if (other.name == name) r.fail(kv.first, fmt::format("signals: '{}' is given twice", name));
+      network::NamedSignal sig;
+      sig.name = name;
+      sig.point = signal_point(r, kv.second, "signals." + name, f);
+      sig.origin = fmt::format("{}:{}", file, kv.first.Mark().line + 1);
+      f.signals.push_back(std::move(sig));
+    }
+  }
   return f;
+}
+
+network::NetworkOptions network_options(const NetworkFile& file) {
+  network::NetworkOptions o;
+  for (const NetworkSlave& s : file.slaves) {
+    o.station_aliases.push_back(s.alias);
+    o.identities.push_back(s.identity);
+    o.slave_names.push_back(s.name);
+  }
+  o.topology = file.topology;
+  o.wires = file.wires;
+  o.signals = file.signals;
+  return o;
 }
 
 NetworkFile load_network_file(const std::string& path, const std::string& profile_dir) {

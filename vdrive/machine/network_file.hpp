@@ -1,8 +1,8 @@
 #pragma once
 // A network file (YAML): the one place a bench is described. The slaves in cable order, each a
 // built-in product or an ESI device, with its name, station alias, plant and place in the
-// topology (which port of which slave its port 0 is cabled to), and the wires between slaves'
-// entries. `vdrive run --network FILE` serves it; docs/networks.md has the format:
+// topology (which port of which slave its port 0 is cabled to), the wires between signal points
+// (slaves' entries and drives' plant connections), and names for signal points. `vdrive run --network FILE` serves it; docs/networks.md has the format:
 //
 //   slaves:
 //     - {name: coupler, device: io_terminals.xml:0x044c2c52}
@@ -10,6 +10,9 @@
 //     - {name: x, device: a6b, plant: x.yaml, parent: coupler, port: 3}
 //   wires:
 //     - {from: do 0x7000:1, to: di 0x6000:1}
+//     - {from: do 0x7000:2, to: x.probe1}          # a plant connection (network/signal_point.hpp)
+//   signals:
+//     door: di 0x6000:2                             # named for the control socket, scenarios, DDS
 //
 // Paths (ESI files, plants) are relative to the network file. Every mistake is a
 // NetworkFileError "<file>:<line>: <field>: <what>".
@@ -42,7 +45,12 @@ struct NetworkFile {
   std::vector<NetworkSlave> slaves;
   network::Topology topology;             // empty: the line
   std::vector<network::SignalWire> wires;
+  std::vector<network::NamedSignal> signals;
 };
+
+// The file's aliases, identities, topology, wires, signals and slave names as network options
+// (plants are the caller's: it reads them as its other plant files).
+network::NetworkOptions network_options(const NetworkFile& file);
 
 // Reads and checks the file: names unique, devices known (built-in, --profile-dir or an ESI file
 // that reads), parents and ports possible (network::validate), wire ends naming slaves.

@@ -9,6 +9,7 @@
 
 #include "esc_model/sii_eeprom.hpp"
 #include "vdrive/esi/esi_import.hpp"
+#include "plant/plant.hpp"
 #include "vdrive/od/object_store.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/profile/sii_image.hpp"
@@ -74,42 +75,99 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
     slaves_.push_back(std::move(slave));
   }
   segment_.set_topology(options.topology);
-  resolve_wires(options.wires);
+  resolve_signals(options);
   const Nanos now = clock.now();
   for (auto& slave : slaves_) slave->firmware->power_on(now);
 }
 
-void Network::resolve_wires(const std::vector<SignalWire>& wires) {
-  for (const SignalWire& w : wires) {
-    auto entry = [&](const WireEnd& end, const char* which) -> std::pair<od::ObjectStore*, const od::EntryDesc*> {
-      if (end.slave >= slaves_.size())
-        throw std::invalid_argument(fmt::format("{}: {} slave {} does not exist (the network has {})", w.name, which,
-                                                end.slave + 1, slaves_.size()));
-      od::ObjectStore& objects = slaves_[end.slave]->firmware->objects();
-      const od::EntryDesc* e = objects.dictionary().find(end.index, end.subindex);
-      if (e == nullptr)
-        throw std::invalid_argument(fmt::format("{}: {} slave {} ({}) has no object {:04X}h:{:02X}h", w.name, which,
-                                                end.slave + 1, slaves_[end.slave]->profile.id, end.index, end.subindex));
-      return {&objects, e};
-    };
-    const auto [from_store, from] = entry(w.from, "source");
-    const auto [to_store, to] = entry(w.to, "target");
-    if (from->bit_length != to->bit_length)
-      throw std::invalid_argument(fmt::format("{}: the source is {} bits, the target {}", w.name, from->bit_length,
-                                              to->bit_length));
-    wires_.push_back({from_store->raw(*from).data(), to_store->raw(*to).data(), from->bit_length});
+SignalAccess Network::resolve(const SignalPoint& point) {
+  if (point.slave >= slaves_.size())
+    throw std::invalid_argument(fmt::format("slave {} does not exist (the network has {})", point.slave + 1, slaves_.size()));
+  auto who = [&] {
+    const std::string position = fmt::format("{}", point.slave + 1);
+    const std::string& name = point.slave < slave_names_.size() ? slave_names_[point.slave] : position;
+    const std::string& id = slaves_[point.slave]->profile.id;
+    return name == position ? fmt::format("slave {} ({})", position, id)
+                            : fmt::format("'{}' (slave {}, {})", name, position, id);
+  };
+  firmware::SlaveFirmware& fw = *slaves_[point.slave]->firmware;
+  if (point.plant) {
+    plant::Plant* plant = fw.plant();
+    if (plant == nullptr) throw std::invalid_argument(fmt::format("{} is not a drive: it has no {}", who(), connection_name(*point.plant)));
+    return SignalAccess::connection(*plant, *point.plant);
+  }
+  od::ObjectStore& objects = fw.objects();
+  const od::EntryDesc* e = objects.dictionary().find(point.index, point.subindex);
+  if (e == nullptr)
+    throw std::invalid_argument(fmt::format("{} has no object {:04X}h:{:02X}h", who(), point.index, point.subindex));
+  try {
+    return SignalAccess::entry(objects.raw(*e).data(), *e);
+  } catch (const std::invalid_argument& ex) {
+    throw std::invalid_argument(fmt::format("{}: {}", who(), ex.what()));
   }
 }
 
-// Whole bytes are copied; a value of fewer than 8 bits only its bits (the rest of the byte is the
-// target's own).
+SignalPoint Network::point_of(std::string_view name_or_point) const {
+  for (const NamedSignal& s : signals_)
+    if (s.name == name_or_point) return s.point;
+  try {
+    return parse_point(name_or_point);
+  } catch (const std::invalid_argument& e) {
+    std::string names;
+    for (const NamedSignal& s : signals_) names += (names.empty() ? "" : ", ") + s.name;
+    throw std::invalid_argument(fmt::format("no signal '{}' ({}) and not a point: {}", name_or_point,
+                                            names.empty() ? "the network names none" : "signals: " + names, e.what()));
+  }
+}
+
+SignalPoint Network::parse_point(std::string_view text) const { return parse_signal_point(text, slave_names_); }
+
+std::string Network::format_point(const SignalPoint& point) const { return format_signal_point(point, slave_names_); }
+
+void Network::resolve_signals(const NetworkOptions& options) {
+  slave_names_.resize(slaves_.size());
+  for (std::size_t i = 0; i < slaves_.size(); ++i)
+    slave_names_[i] = i < options.slave_names.size() && !options.slave_names[i].empty() ? options.slave_names[i]
+                                                                                           : fmt::format("{}", i + 1);
+  for (const SignalWire& w : options.wires) {
+    Wire wire;
+    try {
+      wire.from = resolve(w.from);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("{}: source: {}", w.name, e.what()));
+    }
+    try {
+      wire.to = resolve(w.to);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("{}: target: {}", w.name, e.what()));
+    }
+    wire.same_entry_size = wire.from.is_entry() && wire.to.is_entry();
+    if (wire.same_entry_size && wire.from.bits() != wire.to.bits())
+      throw std::invalid_argument(fmt::format("{}: the source is {} bits, the target {}", w.name, wire.from.bits(),
+                                              wire.to.bits()));
+    wires_.push_back(wire);
+  }
+  for (const NamedSignal& s : options.signals) {
+    try {
+      signal_access_.push_back(resolve(s.point));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("{}{}signal '{}': {}", s.origin, s.origin.empty() ? "" : ": ", s.name, e.what()));
+    }
+    signals_.push_back(s);
+  }
+}
+
+// Between entries whole bytes are copied; a value of fewer than 8 bits only its bits (the rest of
+// the byte is the target's own). A plant connection at either end carries one bit.
 void Network::copy_wires() {
   for (const Wire& w : wires_) {
-    if (w.bits >= 8) {
-      std::memcpy(w.to, w.from, (w.bits + 7u) / 8u);
+    if (!w.same_entry_size) {
+      w.to.write(w.from.read() != 0 ? 1 : 0);
+    } else if (w.from.bits() >= 8) {
+      std::memcpy(w.to.bytes(), w.from.bytes(), (w.from.bits() + 7u) / 8u);
     } else {
-      const auto mask = static_cast<std::uint8_t>((1u << w.bits) - 1u);
-      *w.to = static_cast<std::uint8_t>((*w.to & ~mask) | (*w.from & mask));
+      const auto mask = static_cast<std::uint8_t>((1u << w.from.bits()) - 1u);
+      *w.to.bytes() = static_cast<std::uint8_t>((*w.to.bytes() & ~mask) | (*w.from.bytes() & mask));
     }
   }
 }

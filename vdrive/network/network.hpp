@@ -15,6 +15,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/clock.hpp"
@@ -22,6 +23,7 @@
 #include "vdrive/firmware/slave_firmware.hpp"
 #include "vdrive/network/between_slaves.hpp"
 #include "vdrive/network/segment.hpp"
+#include "vdrive/network/signal_access.hpp"
 #include "vdrive/network/signal_wire.hpp"
 #include "vdrive/network/topology.hpp"
 #include "vdrive/profile/product_profile.hpp"
@@ -51,8 +53,12 @@ struct NetworkOptions {
   // Per slave in the order given: the product code and revision a built-in product is served with,
   // where it covers several (Identity::product_code_mask, e.g. an ENI's A6B model); absent: its own.
   std::vector<std::optional<IdentityChoice>> identities = {};
-  // Wires between slaves' entries (signal_wire.hpp).
+  // Wires between signal points (signal_wire.hpp).
   std::vector<SignalWire> wires = {};
+  // Named signal points (a network file's `signals:`), for the control socket, scenarios and telemetry.
+  std::vector<NamedSignal> signals = {};
+  // Per slave in the order given: its name in signal points ("di 0x6000:1"); absent: its position.
+  std::vector<std::string> slave_names = {};
   // Where each slave's port 0 is cabled (topology.hpp), per slave in the order given; empty: the
   // line, slave i's port 1 to slave i+1.
   Topology topology = {};
@@ -95,6 +101,19 @@ public:
   firmware::SlaveFirmware& firmware(std::size_t i) { return *slaves_[i]->firmware; }
   Segment& segment() { return segment_; }
 
+  // Signals (signal_point.hpp), on the loop's thread. resolve() throws std::invalid_argument for a
+  // slave, entry or plant that does not exist, or an entry that is not an integer; write() throws
+  // std::out_of_range for a value the point cannot hold. A value written to a wire's target is
+  // replaced by the wire's at the next firmware call.
+  SignalAccess resolve(const SignalPoint& point);
+  SignalPoint parse_point(std::string_view text) const;  // names as NetworkOptions::slave_names
+  // A named signal's point, else parse_point(); the message lists the names when it is neither.
+  SignalPoint point_of(std::string_view name_or_point) const;
+  std::string format_point(const SignalPoint& point) const;
+  const std::vector<NamedSignal>& signals() const { return signals_; }
+  const SignalAccess& signal(std::size_t i) const { return signal_access_[i]; }  // of signals()
+  const std::vector<std::string>& slave_names() const { return slave_names_; }
+
 private:
   struct Slave {
     profile::ProductProfile profile;  // the firmware keeps a reference to it
@@ -102,17 +121,19 @@ private:
     std::unique_ptr<firmware::SlaveFirmware> firmware;
   };
 
-  // A wire resolved to the bytes it copies (allocation-free on the frame path).
+  // A wire resolved to what it copies (allocation-free on the frame path).
   struct Wire {
-    const std::uint8_t* from = nullptr;
-    std::uint8_t* to = nullptr;
-    std::uint16_t bits = 0;
+    SignalAccess from, to;
+    bool same_entry_size = false;   // copy the bytes
   };
-  void resolve_wires(const std::vector<SignalWire>& wires);
+  void resolve_signals(const NetworkOptions& options);
   void copy_wires();
 
   std::vector<std::unique_ptr<Slave>> slaves_;  // stable addresses for the references above
   std::vector<Wire> wires_;
+  std::vector<NamedSignal> signals_;
+  std::vector<SignalAccess> signal_access_;
+  std::vector<std::string> slave_names_;
   Segment segment_;
 };
 

@@ -12,6 +12,7 @@
 #include "common/clock.hpp"
 #include "plant/plant_description.hpp"
 #include "vdrive/fault/fault_spec.hpp"
+#include "vdrive/network/network.hpp"
 
 namespace vdrive::scenario {
 
@@ -80,9 +81,12 @@ struct MotionAction {
 struct FaultAction { fault::FaultSpec fault; std::string id; };  // id: for clear_fault
 struct ClearFaultAction { std::string id; };                       // "" = every active fault
 struct AcknowledgeAction { int slave = 0; };                       // AL error acknowledge (0x0120 bit 4)
+// Sets a signal: a named signal of the network file or a point ("di 0x6000:1", "x.home"), as
+// network/signal_point.hpp reads them. A wire's target keeps it until the wire's next copy.
+struct SignalAction { std::string signal; std::int64_t value = 0; };
 
 using Action = std::variant<StateAction, SdoWriteAction, SdoReadAction, ControlwordAction, ModeAction, EnableAction, DisableAction,
-                            TargetAction, MotionAction, FaultAction, ClearFaultAction, AcknowledgeAction>;
+                            TargetAction, MotionAction, FaultAction, ClearFaultAction, AcknowledgeAction, SignalAction>;
 
 struct Step {
   std::string name;   // optional; events "step: NAME" refer to it
@@ -94,11 +98,12 @@ struct Step {
 // What an expectation measures (drive side: the slave's own objects and registers, so it holds
 // for any master).
 struct Probe {
-  enum class Kind : std::uint8_t { object, al_state, al_status_code, esc_register, master_wrong_wkc, master_lost_frames } kind = Kind::object;
+  enum class Kind : std::uint8_t { object, al_state, al_status_code, esc_register, master_wrong_wkc, master_lost_frames, signal } kind = Kind::object;
   int slave = 0;
   std::uint16_t index = 0;      // object index, or the register address
   std::uint8_t subindex = 0;
   std::uint8_t size = 2;        // register bytes (1, 2 or 4), little-endian
+  std::string signal;           // a named signal or a point, as SignalAction's
 };
 
 
@@ -140,6 +145,10 @@ struct Scenario {
   Nanos trace_period = 0;              // 0: every cycle
   Nanos hop_delay = 500;
   std::vector<SlaveSpec> slaves;
+  // segment.network: the network file's names, aliases, identities, topology, wires and signals
+  // (plants are in `slaves`); empty for a segment of `slaves`.
+  network::NetworkOptions network;
+  std::string network_file;
   MasterSpec master;
   std::vector<Step> steps;
   std::vector<Expectation> expectations;

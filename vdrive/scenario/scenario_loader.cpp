@@ -16,6 +16,7 @@
 #include "vdrive/drive/product_plant.hpp"
 #include "vdrive/fault/fault_fields.hpp"
 #include "vdrive/esi/esi_import.hpp"
+#include "vdrive/machine/network_file.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/scenario/time_value.hpp"
 
@@ -136,7 +137,26 @@ struct Context {
   std::string file;
   std::size_t slaves = 0;
   std::set<std::string> step_names;
+  std::vector<std::string> slave_names;          // for signal points
+  std::vector<network::NamedSignal> signals;      // the network file's
 };
+
+// A named signal of the network file, or a point ("di 0x6000:1", "x.home"). That the entry
+// exists is checked when the run builds the network.
+std::string signal_of(Map& m, std::string_view key, const Context& c) {
+  const std::string s = m.string(key);
+  for (const network::NamedSignal& n : c.signals)
+    if (n.name == s) return s;
+  try {
+    (void)network::parse_signal_point(s, c.slave_names);
+  } catch (const std::invalid_argument& e) {
+    std::string names;
+    for (const network::NamedSignal& n : c.signals) names += (names.empty() ? "" : ", ") + n.name;
+    m.fail(key, fmt::format("no signal \"{}\" ({}) and not a point: {}", s,
+                            names.empty() ? "no network file names signals" : "signals: " + names, e.what()));
+  }
+  return s;
+}
 
 int slave_of(Map& m, const Context& c, bool allow_all) {
   if (allow_all && !m.has("slave")) return 0;
@@ -252,14 +272,14 @@ SdoWriteAction sdo_write_of(Map& m, const Context& c) {
 
 Action action_of(Map& step, const Context& c) {
   static const std::string_view kActions[] = {"state", "sdo_write", "sdo_read", "controlword", "mode", "enable", "disable",
-                                              "target", "motion", "fault", "clear_fault", "acknowledge"};
+                                              "target", "motion", "fault", "clear_fault", "acknowledge", "signal"};
   std::string_view which;
   for (const std::string_view a : kActions) {
     if (!step.has(a)) continue;
     if (!which.empty()) step.fail(a, fmt::format("a step has one action; this one has \"{}\" and \"{}\"", which, a));
     which = a;
   }
-  if (which.empty()) step.fail("", "a step needs one action: state, sdo_write, sdo_read, controlword, mode, enable, disable, target, motion, fault, clear_fault or acknowledge");
+  if (which.empty()) step.fail("", "a step needs one action: state, sdo_write, sdo_read, controlword, mode, enable, disable, target, motion, fault, clear_fault, acknowledge or signal");
   Map m = step.map(which);
   if (which == "state") {
     StateAction a{slave_of(m, c, true), state_of(m, "to")};
@@ -267,6 +287,19 @@ Action action_of(Map& step, const Context& c) {
     return a;
   }
   if (which == "sdo_write") return sdo_write_of(m, c);
+  if (which == "signal") {
+    SignalAction a{signal_of(m, "name", c)};
+    const YAML::Node v = m.get("value");
+    bool b = false;
+    if (v.IsScalar() && (v.Scalar() == "true" || v.Scalar() == "false" || v.Scalar() == "on" || v.Scalar() == "off") &&
+        YAML::convert<bool>::decode(v, b))
+      a.value = b ? 1 : 0;
+    else
+      a.value = m.integer_of(v, m.field("value"), std::numeric_limits<std::int64_t>::min(),
+                             std::numeric_limits<std::int64_t>::max());
+    m.finish();
+    return a;
+  }
   if (which == "sdo_read") {
     SdoReadAction a;
     a.slave = slave_of(m, c, false);
@@ -345,14 +378,19 @@ Action action_of(Map& step, const Context& c) {
 
 Probe probe_of(Map& m, const Context& c) {
   Probe p;
-  static const std::string_view kProbes[] = {"object", "al_state", "al_status_code", "register", "master"};
+  static const std::string_view kProbes[] = {"object", "al_state", "al_status_code", "register", "master", "signal"};
   std::string_view which;
   for (const std::string_view k : kProbes) {
     if (!m.has(k)) continue;
     if (!which.empty()) m.fail(k, fmt::format("an expectation measures one thing; this one has \"{}\" and \"{}\"", which, k));
     which = k;
   }
-  if (which.empty()) m.fail("", "an expectation needs what it measures: object, al_state, al_status_code, register or master");
+  if (which.empty()) m.fail("", "an expectation needs what it measures: object, al_state, al_status_code, register, master or signal");
+  if (which == "signal") {
+    p.kind = Probe::Kind::signal;
+    p.signal = signal_of(m, "signal", c);
+    return p;
+  }
   if (which == "master") {
     const std::string counter = m.string("master");
     if (counter == "wrong_wkc") p.kind = Probe::Kind::master_wrong_wkc;
@@ -454,10 +492,48 @@ Scenario parse_scenario(std::string_view text, const std::string& file) {
 
   Map segment = top.map("segment");
   s.hop_delay = segment.time_or("hop_delay", 500);
-  const YAML::Node slaves = segment.sequence("slaves");
-  if (slaves.size() == 0) segment.fail("slaves", "a segment needs at least one slave");
   std::deque<profile::ProductProfile> products;
   const fs::path base = fs::path(file).parent_path();
+  // `path` as given (found beside the scenario when relative), or already resolved.
+  auto plant_of = [&](Map& m, const std::string& rel, bool resolved = false) -> plant::PlantDescription {
+    const fs::path path = resolved || fs::path(rel).is_absolute() ? fs::path(rel) : base / rel;
+    std::optional<plant::PlantDescription> plant;
+    try {
+      plant = plant::load_plant_file(path.string(), [&](std::string_view id) -> std::optional<plant::MotorCatalogue> {
+        const profile::ProductProfile* product = lookup(products, id);
+        if (!product) return std::nullopt;
+        return drive::motor_catalogue(*product);
+      });
+    } catch (const std::exception& e) {
+      m.fail("plant", e.what());
+    }
+    if (plant->axes.empty()) m.fail("plant", "the plant has no axis for the drive");
+    return *plant;
+  };
+  if (segment.has("network") && segment.has("slaves"))
+    segment.fail("network", "a segment is a network file or a list of slaves, not both");
+  if (segment.has("network")) {
+    const std::string rel = segment.string("network");
+    s.network_file = fs::path(rel).is_absolute() ? rel : (base / rel).string();
+    machine::NetworkFile nf;
+    try {
+      nf = machine::load_network_file(s.network_file);
+    } catch (const machine::NetworkFileError& e) {
+      segment.fail("network", e.what());
+    }
+    s.network = machine::network_options(nf);
+    for (const machine::NetworkSlave& ns : nf.slaves) {
+      SlaveSpec sl;
+      sl.line = segment.line();
+      sl.product = ns.device;
+      if (!ns.plant_file.empty()) sl.plant = plant_of(segment, ns.plant_file, true);
+      s.slaves.push_back(std::move(sl));
+    }
+    c.slave_names = s.network.slave_names;
+    c.signals = s.network.signals;
+  }
+  const YAML::Node slaves = segment.has("network") ? YAML::Node(YAML::NodeType::Sequence) : segment.sequence("slaves");
+  if (!segment.has("network") && slaves.size() == 0) segment.fail("slaves", "a segment needs at least one slave");
   for (std::size_t i = 0; i < slaves.size(); ++i) {
     Map m(slaves[i], c.file, fmt::format("segment.slaves[{}]", i));
     SlaveSpec sl;
@@ -477,22 +553,10 @@ Scenario parse_scenario(std::string_view text, const std::string& file) {
       for (const std::string& id : profile::known_products()) known += (known.empty() ? "" : ", ") + id;
       m.fail("product", fmt::format("unknown product \"{}\" ({})", sl.product, known));
     }
-    if (m.has("plant")) {
-      const std::string rel = m.string("plant");
-      const fs::path path = fs::path(rel).is_absolute() ? fs::path(rel) : base / rel;
-      try {
-        sl.plant = plant::load_plant_file(path.string(), [&](std::string_view id) -> std::optional<plant::MotorCatalogue> {
-          const profile::ProductProfile* product = lookup(products, id);
-          if (!product) return std::nullopt;
-          return drive::motor_catalogue(*product);
-        });
-      } catch (const std::exception& e) {
-        m.fail("plant", e.what());
-      }
-      if (sl.plant->axes.empty()) m.fail("plant", "the plant has no axis for the drive");
-    }
+    if (m.has("plant")) sl.plant = plant_of(m, m.string("plant"));
     m.finish();
     s.slaves.push_back(std::move(sl));
+    c.slave_names.push_back(fmt::format("{}", i + 1));
   }
   segment.finish();
   c.slaves = s.slaves.size();

@@ -45,8 +45,9 @@ std::vector<std::string> product_ids(const Scenario& s) {
 }
 
 network::NetworkOptions network_options(const Scenario& s) {
-  network::NetworkOptions o;
+  network::NetworkOptions o = s.network;
   o.hop_delay = s.hop_delay;
+  o.plants.clear();
   for (const SlaveSpec& sl : s.slaves) o.plants.push_back(sl.plant);
   return o;
 }
@@ -151,9 +152,31 @@ private:
 
   bool is_drive(std::size_t i) const { return network_.profile(i).modes.supported_drive_modes != 0 && !network_.profile(i).modes.modes.empty(); }
 
-  // Objects the expectations read must exist in the product, or the scenario is wrong.
+  // A signal a step sets or an expectation reads, resolved once; what does not exist is the
+  // scenario's mistake, with its line.
+  const network::SignalAccess& signal(const std::string& name, int line) {
+    if (const auto it = signals_.find(name); it != signals_.end()) return it->second;
+    try {
+      return signals_.emplace(name, network_.resolve(network_.point_of(name))).first->second;
+    } catch (const std::invalid_argument& e) {
+      throw RunError(fmt::format("{}:{}: signal \"{}\": {}", s_.file, line, name, e.what()));
+    }
+  }
+
+  // Objects and signals the steps and expectations use must exist in the products, or the
+  // scenario is wrong.
   void check_probes() {
+    for (const Step& st : s_.steps) {
+      if (const auto* a = std::get_if<SignalAction>(&st.action)) {
+        try {
+          signal(a->signal, st.line).check(a->value);
+        } catch (const std::out_of_range& e) {
+          throw RunError(fmt::format("{}:{}: signal \"{}\": {}", s_.file, st.line, a->signal, e.what()));
+        }
+      }
+    }
     for (const Expectation& e : s_.expectations) {
+      if (e.probe.kind == Probe::Kind::signal) (void)signal(e.probe.signal, e.line);
       if (e.probe.kind != Probe::Kind::object) continue;
       const auto i = static_cast<std::size_t>(e.probe.slave - 1);
       if (!network_.firmware(i).objects().dictionary().find(e.probe.index, e.probe.subindex))
@@ -367,6 +390,10 @@ private:
     }
     say(fmt::format("fault {} cleared", a.id));
   }
+  void act(const SignalAction& a, Nanos) {
+    signal(a.signal, current_step_ != nullptr ? current_step_->line : 0).write(a.value);
+    say(fmt::format("signal {} = {}", a.signal, a.value));
+  }
   void act(const AcknowledgeAction& a, Nanos) {
     master("acknowledge").read_al_status(static_cast<std::size_t>(a.slave - 1));  // the acknowledge repeats the current state
     master_->acknowledge_error(static_cast<std::size_t>(a.slave - 1));
@@ -400,6 +427,7 @@ private:
       }
       case Probe::Kind::master_wrong_wkc: return task_ ? static_cast<std::int64_t>(task_->stats().wrong_wkc) : 0;
       case Probe::Kind::master_lost_frames: return task_ ? static_cast<std::int64_t>(task_->stats().lost_frames) : 0;
+      case Probe::Kind::signal: return signals_.at(p.signal).read();
     }
     return 0;
   }
@@ -507,6 +535,7 @@ private:
   std::vector<ExpectationResult> step_results_;  // sdo_read steps with a condition
   const Step* current_step_ = nullptr;
   std::map<std::string, int> fault_ids_;
+  std::map<std::string, network::SignalAccess> signals_;
   master::ProcessImageLayout layout_;
   std::unique_ptr<master::CyclicTask> task_;
   std::unique_ptr<PcapngWriter> capture_;
