@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "vdrive/esi/eni_slave_device.hpp"
 #include "vdrive/esi/esi_import.hpp"
 #include "vdrive/machine/eni_reader.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -33,6 +34,14 @@ std::string joined(const std::vector<std::string>& lines) {
 std::string one_slave(const std::string& slave_body) {
   return "<EtherCATConfig><Config>\n<Slave><Info><Name>Lonely</Name><PhysAddr>1001</PhysAddr><VendorId>1</VendorId>"
          "<ProductCode>2</ProductCode><RevisionNo>3</RevisionNo></Info>\n" + slave_body + "</Slave></Config></EtherCATConfig>\n";
+}
+
+// The device vdrive builds from the first <Slave> of `eni`.
+esi::EniSlaveDevice device_of(const std::string& eni) {
+  tinyxml2::XMLDocument doc;
+  EXPECT_EQ(doc.Parse(eni.c_str()), tinyxml2::XML_SUCCESS);
+  const esi::XmlReading xml("inline.xml");
+  return esi::eni_slave_device(esi::read_eni_slave(xml, doc.RootElement()->FirstChildElement("Config")->FirstChildElement("Slave")));
 }
 
 TEST(EniOnly, ASlaveNothingMatchesIsServedFromTheEniWithAWarning) {
@@ -130,6 +139,39 @@ TEST(EniOnly, TheNetworkFileItWritesNamesTheEniSlaveAndLoadsBack) {
     EXPECT_EQ(f.slaves[i].device, n.network.slaves[i].device);
   }
   EXPECT_EQ(esi::load_esi_device(f.slaves[1].device)->profile.identity.product_code, 0x5678u);
+}
+
+TEST(EniOnly, TheBootStrapMailboxIsTheDevicesBootMailbox) {
+  const esi::EniSlaveDevice d = device_of(one_slave(
+      "<Mailbox><Send><Start>16384</Start><Length>276</Length></Send><Recv><Start>18432</Start><Length>276</Length></Recv>"
+      "<BootStrap><Send><Start>16384</Start><Length>1024</Length></Send><Recv><Start>18432</Start><Length>1024</Length></Recv>"
+      "</BootStrap><Protocol>CoE</Protocol><Protocol>FoE</Protocol></Mailbox>\n"));
+  EXPECT_EQ(d.device.boot_strap, (std::vector<std::uint8_t>{0x00, 0x40, 0x00, 0x04, 0x00, 0x48, 0x00, 0x04}));
+  EXPECT_TRUE(d.device.coe);
+  EXPECT_TRUE(d.device.foe);
+  const esi::ImportedDevice imported = esi::import_device(d.device);
+  EXPECT_TRUE(imported.profile.has_bootstrap);
+  EXPECT_EQ(imported.profile.mailbox.boot_rx_size, 1024);
+}
+
+TEST(EniOnly, WithoutAMailboxTheEnisSm2IsTheSm0ItsInitCommandsSetUp) {
+  // As configurators describe a digital output terminal: the output SM as <Sm2>, without an
+  // address, and the register init command that sets the device's SM0 up.
+  const esi::EniSlaveDevice d = device_of(one_slave(
+      "<ProcessData><Send><BitLength>8</BitLength></Send><Sm2><Type>Outputs</Type><Enable>1</Enable></Sm2>"
+      "<RxPdo Sm=\"2\"><Index>#x1600</Index><Entry><Index>#x7000</Index><SubIndex>1</SubIndex><BitLen>8</BitLen></Entry></RxPdo>"
+      "</ProcessData>\n<InitCmds><InitCmd><Transition>PS</Transition><Cmd>5</Cmd><Ado>2048</Ado><Data>0011010044000100</Data>"
+      "</InitCmd></InitCmds>\n"));
+  ASSERT_EQ(d.device.sync_managers.size(), 1u);
+  EXPECT_EQ(d.device.sync_managers[0].kind, "Outputs");
+  EXPECT_EQ(d.device.sync_managers[0].start, 0x1100);
+  EXPECT_EQ(d.device.sync_managers[0].control, 0x44);
+  EXPECT_EQ(d.device.sync_managers[0].default_size, 1);
+  ASSERT_EQ(d.device.rx_pdos.size(), 1u);
+  EXPECT_EQ(d.device.rx_pdos[0].sm, 0);
+  EXPECT_NE(std::find_if(d.assumptions.begin(), d.assumptions.end(),
+                         [](const std::string& a) { return a.find("SM2 of the ENI is the device's SM0") != std::string::npos; }),
+            d.assumptions.end());
 }
 
 TEST(EniOnly, ProcessDataWithoutASyncManagerAddressIsRefused) {

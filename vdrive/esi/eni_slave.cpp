@@ -77,6 +77,15 @@ void read_mailbox(const XmlReading& xml, const XMLElement* m, EniSlave& s) {
   s.send_length = static_cast<std::uint16_t>(xml.number(xml.required(send, "Length"), 0, kU16));
   s.recv_start = static_cast<std::uint16_t>(xml.number(xml.required(recv, "Start"), 0, kU16));
   s.recv_length = static_cast<std::uint16_t>(xml.number(xml.required(recv, "Length"), 0, kU16));
+  if (const XMLElement* boot = XmlReading::child(m, "BootStrap")) {
+    const XMLElement* bs = xml.required(boot, "Send");
+    const XMLElement* br = xml.required(boot, "Recv");
+    s.boot_mailbox = std::array<std::uint16_t, 4>{
+        static_cast<std::uint16_t>(xml.number(xml.required(bs, "Start"), 0, kU16)),
+        static_cast<std::uint16_t>(xml.number(xml.required(bs, "Length"), 0, kU16)),
+        static_cast<std::uint16_t>(xml.number(xml.required(br, "Start"), 0, kU16)),
+        static_cast<std::uint16_t>(xml.number(xml.required(br, "Length"), 0, kU16))};
+  }
   for (const XMLElement* p = m->FirstChildElement("Protocol"); p; p = p->NextSiblingElement("Protocol"))
     s.protocols.push_back(XmlReading::text(p));
   // A protocol with init commands of its own (<CoE>, <SoE>, ...) is one the device speaks.

@@ -7,6 +7,7 @@
 // vdrive/machine/eni_reader.hpp).
 #include <tinyxml2.h>
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -76,6 +77,8 @@ struct EniSlave {
   int mailbox_line = 0;
   std::uint16_t send_start = 0, send_length = 0, recv_start = 0, recv_length = 0;
   std::vector<std::string> protocols;    // <Protocol> texts and the protocols with their own element
+  // <Mailbox><BootStrap>: the Boot-state mailbox, Send (SM0) and Recv (SM1) start and length.
+  std::optional<std::array<std::uint16_t, 4>> boot_mailbox;
   // <ProcessData>
   int process_data_line = 0;
   std::uint32_t output_bits = 0, input_bits = 0;  // <Send>/<Recv> BitLength

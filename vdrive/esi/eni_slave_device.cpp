@@ -82,6 +82,12 @@ private:
     };
     mailbox_sm(0, "MBoxOut", s_.send_start, s_.send_length, 0x26);
     mailbox_sm(1, "MBoxIn", s_.recv_start, s_.recv_length, 0x22);
+    // The Boot-state mailbox, as ESI <Eeprom><BootStrap> gives it (SII words 14h-17h).
+    if (s_.boot_mailbox)
+      for (const std::uint16_t v : *s_.boot_mailbox) {
+        d.boot_strap.push_back(static_cast<std::uint8_t>(v));
+        d.boot_strap.push_back(static_cast<std::uint8_t>(v >> 8));
+      }
     d.coe = s_.has_protocol("CoE");
     d.foe = s_.has_protocol("FoE");
     d.eoe = s_.has_protocol("EoE");
@@ -113,7 +119,10 @@ private:
       const std::string element = fmt::format("Sm{}", e.number);
       if (s_.has_mailbox && e.number < 2)
         refuse(s_, e.line, element, fmt::format("process data on SM{}, which its <Mailbox> uses", e.number));
-      const std::optional<EniSmWrite> w = s_.sm_written(e.number);
+      // Without a mailbox the device's SMs count from 0 (below), and its register init commands
+      // set up that SM, whatever number the ENI's element has.
+      std::optional<EniSmWrite> w = s_.sm_written(e.number);
+      if (!w && !s_.has_mailbox) w = s_.sm_written(static_cast<int>(sms.size()));
       Sm x;
       x.number = e.number;
       x.pdos = e.pdos;
