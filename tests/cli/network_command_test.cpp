@@ -29,10 +29,23 @@ TEST(NetworkCommand, FromEniPrintsTheNetworkFile) {
   EXPECT_NE(r.out.find("# slave 2 'Term 2 (EL1008)'"), std::string::npos) << r.out;
 }
 
-TEST(NetworkCommand, AnUnmatchedSlaveIsABadArgument) {
+TEST(NetworkCommand, AnUnmatchedSlaveIsServedFromTheEniAloneWithAWarning) {
   const auto r = run_process(VDRIVE_BINARY, {"network", "--from-eni", kProducts + "/networks/bench_eni.xml"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("vdrive network: warning: slave 1 'Term 1 (EK1100)' (vendor 0x00000002, product 0x044C2C52, "
+                       "revision 0x00110000): served from the ENI alone"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("bench_eni.xml#1001\""), std::string::npos) << r.out;
+}
+
+TEST(NetworkCommand, ASlaveTheEniDescribesTooThinlyIsABadArgument) {
+  const auto r = run_process(VDRIVE_BINARY, {"network", "--from-eni", kProducts + "/networks/eni_without_sm_address.xml"});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("'Term 1 (EK1100)'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("eni_without_sm_address.xml:12: <Sm3>: slave 'Sensor' (vendor 0x00000001, product 0x00000002, "
+                       "revision 0x00000001): Inputs without a <StartAddress>"),
+            std::string::npos)
+      << r.err;
   EXPECT_TRUE(r.out.empty());
 }
 

@@ -1,6 +1,7 @@
-// libFuzzer target: ENI files (EtherCATConfig XML). Arbitrary bytes are read as a master's ENI and
-// matched against the built-in products; a broken file must end in a NetworkFileError with a
-// message, never a crash, a hang or a sanitizer report.
+// libFuzzer target: ENI files (EtherCATConfig XML). Arbitrary bytes are read as a master's ENI,
+// matched against the built-in products or served from the ENI alone, and their init commands
+// tried on the devices; a broken file must end in a NetworkFileError with a message, never a
+// crash, a hang or a sanitizer report.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>

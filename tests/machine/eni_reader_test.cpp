@@ -59,16 +59,18 @@ TEST(Eni, TheNetworkFileItWritesReadsBackTheSame) {
   }
 }
 
-TEST(Eni, ASlaveWithoutADeviceIsNamedWithItsIdentity) {
-  try {
-    machine::read_eni(kEni, {});
-    FAIL() << "no ESI directory: the terminals cannot be matched";
-  } catch (const machine::NetworkFileError& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("bench_eni.xml:"), std::string::npos) << m;
-    EXPECT_NE(m.find("slave 1 'Term 1 (EK1100)' (vendor 0x00000002, product 0x044C2C52"), std::string::npos) << m;
-    EXPECT_NE(m.find("add its ESI file to an --esi-dir"), std::string::npos) << m;
-  }
+// Without the search directory the terminals and the ESI drive have no ESI: each is served from
+// what the ENI says of it (here: its identity only; the bench's ENI gives no process data), with a
+// warning naming it and its identity. The A6B is still the built-in product.
+TEST(Eni, WithoutItsEsiASlaveIsServedFromTheEniAlone) {
+  const machine::EniNetwork n = machine::read_eni(kEni, {});
+  ASSERT_EQ(n.network.slaves.size(), 5u);
+  EXPECT_TRUE(n.network.slaves[0].device.ends_with("bench_eni.xml#1001")) << n.network.slaves[0].device;
+  EXPECT_EQ(n.network.slaves[4].device, "a6b");
+  ASSERT_EQ(n.warnings.size(), 4u);
+  EXPECT_NE(n.warnings[0].find("slave 1 'Term 1 (EK1100)' (vendor 0x00000002, product 0x044C2C52, revision 0x00110000): "
+                               "served from the ENI alone"), std::string::npos) << n.warnings[0];
+  EXPECT_NE(n.warnings[0].find("neither a mailbox nor process data"), std::string::npos) << n.warnings[0];
 }
 
 TEST(Eni, NotAnEniIsSaidSo) {

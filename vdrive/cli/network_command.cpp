@@ -30,6 +30,8 @@ void run(const NetworkCommandOptions& o) {
   } catch (const machine::NetworkFileError& e) {
     throw CliError(kExitBadArguments, e.what());
   }
+  // Warnings also go to stderr: the file's comments are easily not read.
+  for (const std::string& w : n.warnings) fmt::print(stderr, "vdrive network: warning: {}\n", w);
   const std::string yaml = machine::to_network_yaml(n.network, n.notes);
   if (o.output.empty() || o.output == "-") {
     std::fwrite(yaml.data(), 1, yaml.size(), stdout);

@@ -226,7 +226,9 @@ void run(RunOptions o) {
     if (!o.plants.empty()) throw CliError(kExitBadArguments, "--plant: with --eni, write the network file (vdrive network --from-eni) and give plants there");
     try {
       machine::EniNetwork eni = machine::read_eni(o.eni, o.esi_dirs, o.profile_dir);
-      for (const std::string& note : eni.notes) spdlog::info("{}", note);
+      for (const std::string& note : eni.notes)
+        if (std::find(eni.warnings.begin(), eni.warnings.end(), note) == eni.warnings.end()) spdlog::info("{}", note);
+      for (const std::string& warning : eni.warnings) spdlog::warn("{}", warning);
       o.network = std::move(eni.network);
     } catch (const machine::NetworkFileError& e) {
       throw CliError(kExitBadArguments, e.what());

@@ -10,6 +10,7 @@
 
 #include "ethercat/little_endian.hpp"
 #include "ethercat/sii.hpp"
+#include "vdrive/esi/eni_slave_device.hpp"
 #include "vdrive/esi/esi_dictionary_reader.hpp"
 #include "vdrive/esi/esi_error.hpp"
 #include "vdrive/esi/esi_pdo_objects.hpp"
@@ -375,7 +376,7 @@ ImportedDevice import_device(const EsiDevice& d) {
 bool is_esi_reference(std::string_view name) {
   std::string lower(name);
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-  return lower.ends_with(".xml") || lower.find(".xml:") != std::string::npos;
+  return lower.ends_with(".xml") || lower.find(".xml:") != std::string::npos || lower.find(".xml#") != std::string::npos;
 }
 
 DeviceReference parse_device_reference(std::string_view name) {
@@ -414,9 +415,14 @@ std::shared_ptr<const ImportedDevice> load_esi_device(std::string_view name) {
   static std::map<std::string, std::shared_ptr<const ImportedDevice>, std::less<>> cache;
   const std::lock_guard lock(mutex);
   if (const auto it = cache.find(name); it != cache.end()) return it->second;
-  const DeviceReference r = parse_device_reference(name);
-  const std::vector<EsiDevice> devices = read_esi_file(r.path);
-  auto imported = std::make_shared<const ImportedDevice>(import_device(select_device(devices, r)));
+  std::shared_ptr<const ImportedDevice> imported;
+  if (is_eni_slave_reference(name)) {
+    imported = std::make_shared<const ImportedDevice>(import_device(load_eni_slave_device(name).device));
+  } else {
+    const DeviceReference r = parse_device_reference(name);
+    const std::vector<EsiDevice> devices = read_esi_file(r.path);
+    imported = std::make_shared<const ImportedDevice>(import_device(select_device(devices, r)));
+  }
   cache.emplace(std::string(name), imported);
   return imported;
 }

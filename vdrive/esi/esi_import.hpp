@@ -7,7 +7,8 @@
 //
 // Devices are named on the command line and in network files as "FILE.xml", "FILE.xml:PRODUCT" or
 // "FILE.xml:PRODUCT:REVISION" (numbers decimal or 0x hex): without a product code the file must
-// hold one device.
+// hold one device. "FILE.xml#PHYSADDR" names a slave of an ENI served from the ENI alone
+// (eni_slave_device.hpp).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -34,7 +35,7 @@ struct DeviceReference {
   std::optional<std::uint32_t> product_code, revision;
 };
 
-// True for a name that refers to an ESI file (ends in .xml, or has ".xml:" in it, any case).
+// True for a name that refers to an ESI file (ends in .xml, or has ".xml:" or ".xml#" in it, any case).
 bool is_esi_reference(std::string_view name);
 // Throws EsiError for a malformed product code or revision.
 DeviceReference parse_device_reference(std::string_view name);

@@ -65,17 +65,21 @@ void add_mapped_entries(std::vector<ObjectDesc>& objects, const EsiPdo& pdo, boo
   }
 }
 
-void add_mapping_object(std::vector<ObjectDesc>& objects, const EsiPdo& pdo) {
+// Writable in PreOp where the device lets a master configure its PDOs (CoE PdoConfig) and this
+// one is not fixed, as ETG.1000.6 has it.
+void add_mapping_object(std::vector<ObjectDesc>& objects, const EsiPdo& pdo, bool configurable) {
   if (find(objects, pdo.index) != nullptr) return;
   ObjectDesc o{pdo.index, pdo.name, od::ObjectCode::Array, {}};
   const auto n = static_cast<std::uint8_t>(std::min<std::size_t>(pdo.entries.size(), 254));
-  o.entries.push_back(make(pdo.index, 0, "SubIndex 000", DataType::Unsigned8, 8, od::access::kReadAll, n));
+  const std::uint16_t access = configurable && !pdo.fixed ? (od::access::kReadAll | od::access::kWritePreOp)
+                                                          : od::access::kReadAll;
+  o.entries.push_back(make(pdo.index, 0, "SubIndex 000", DataType::Unsigned8, 8, access, n));
   for (std::uint8_t i = 0; i < n; ++i) {
     const EsiPdoEntry& e = pdo.entries[i];
     const std::uint64_t mapping = static_cast<std::uint64_t>(e.index) << 16 | static_cast<std::uint64_t>(e.subindex) << 8 |
                                   static_cast<std::uint8_t>(e.bit_length);
     o.entries.push_back(make(pdo.index, static_cast<std::uint8_t>(i + 1), "SubIndex " + std::to_string(i + 1),
-                             DataType::Unsigned32, 32, od::access::kReadAll, mapping));
+                             DataType::Unsigned32, 32, access, mapping));
   }
   objects.push_back(std::move(o));
 }
@@ -101,8 +105,8 @@ void add_assignment(std::vector<ObjectDesc>& objects, std::uint16_t index, const
 void add_pdo_objects(std::vector<ObjectDesc>& objects, const EsiDevice& d) {
   for (const EsiPdo& p : d.rx_pdos) add_mapped_entries(objects, p, true);
   for (const EsiPdo& p : d.tx_pdos) add_mapped_entries(objects, p, false);
-  for (const EsiPdo& p : d.rx_pdos) add_mapping_object(objects, p);
-  for (const EsiPdo& p : d.tx_pdos) add_mapping_object(objects, p);
+  for (const EsiPdo& p : d.rx_pdos) add_mapping_object(objects, p, d.pdo_config);
+  for (const EsiPdo& p : d.tx_pdos) add_mapping_object(objects, p, d.pdo_config);
   add_assignment(objects, 0x1C12, d.rx_pdos, d.pdo_assign);
   add_assignment(objects, 0x1C13, d.tx_pdos, d.pdo_assign);
   std::sort(objects.begin(), objects.end(), [](const ObjectDesc& a, const ObjectDesc& b) { return a.index < b.index; });

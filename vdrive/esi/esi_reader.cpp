@@ -52,9 +52,9 @@ public:
     for (const XMLElement* s = d->FirstChildElement("Sm"); s; s = s->NextSiblingElement("Sm"))
       dev.sync_managers.push_back(read_sm(s));
     for (const XMLElement* p = d->FirstChildElement("RxPdo"); p; p = p->NextSiblingElement("RxPdo"))
-      dev.rx_pdos.push_back(read_pdo(p));
+      dev.rx_pdos.push_back(read_pdo(xml_, p));
     for (const XMLElement* p = d->FirstChildElement("TxPdo"); p; p = p->NextSiblingElement("TxPdo"))
-      dev.tx_pdos.push_back(read_pdo(p));
+      dev.tx_pdos.push_back(read_pdo(xml_, p));
     read_mailbox(XmlReading::child(d, "Mailbox"), dev);
     if (const XMLElement* dc = XmlReading::child(d, "Dc")) {
       dev.has_dc = true;
@@ -97,29 +97,6 @@ private:
       xml_.fail(s, fmt::format("'{}': expected MBoxOut, MBoxIn, Outputs or Inputs", sm.kind));
     sm.enable = xml_.optional_attribute(s, "Enable", 0, kU8).value_or(0) != 0;
     return sm;
-  }
-
-  EsiPdo read_pdo(const XMLElement* p) const {
-    EsiPdo pdo;
-    pdo.line = p->GetLineNum();
-    pdo.index = static_cast<std::uint16_t>(xml_.number(xml_.required(p, "Index"), 0, kU16));
-    pdo.name = XmlReading::english(p, "Name");
-    pdo.fixed = xml_.flag(p, "Fixed", false);
-    pdo.mandatory = xml_.flag(p, "Mandatory", false);
-    if (const auto sm = xml_.optional_attribute(p, "Sm", 0, 15)) pdo.sm = static_cast<std::uint8_t>(*sm);
-    for (const XMLElement* x = p->FirstChildElement("Exclude"); x; x = x->NextSiblingElement("Exclude"))
-      pdo.exclude.push_back(static_cast<std::uint16_t>(xml_.number(x, 0, kU16)));
-    for (const XMLElement* e = p->FirstChildElement("Entry"); e; e = e->NextSiblingElement("Entry")) {
-      EsiPdoEntry entry;
-      entry.line = e->GetLineNum();
-      entry.index = static_cast<std::uint16_t>(xml_.number(xml_.required(e, "Index"), 0, kU16));
-      entry.subindex = static_cast<std::uint8_t>(xml_.optional_number(e, "SubIndex", 0, kU8).value_or(0));
-      entry.bit_length = static_cast<std::uint16_t>(xml_.number(xml_.required(e, "BitLen"), 1, kU8));
-      entry.name = XmlReading::english(e, "Name");
-      entry.data_type = XmlReading::text(XmlReading::child(e, "DataType"));
-      pdo.entries.push_back(std::move(entry));
-    }
-    return pdo;
   }
 
   void read_mailbox(const XMLElement* m, EsiDevice& dev) const {
@@ -175,6 +152,29 @@ private:
 };
 
 }  // namespace
+
+EsiPdo read_pdo(const XmlReading& xml, const XMLElement* p) {
+  EsiPdo pdo;
+  pdo.line = p->GetLineNum();
+  pdo.index = static_cast<std::uint16_t>(xml.number(xml.required(p, "Index"), 0, kU16));
+  pdo.name = XmlReading::english(p, "Name");
+  pdo.fixed = xml.flag(p, "Fixed", false);
+  pdo.mandatory = xml.flag(p, "Mandatory", false);
+  if (const auto sm = xml.optional_attribute(p, "Sm", 0, 15)) pdo.sm = static_cast<std::uint8_t>(*sm);
+  for (const XMLElement* x = p->FirstChildElement("Exclude"); x; x = x->NextSiblingElement("Exclude"))
+    pdo.exclude.push_back(static_cast<std::uint16_t>(xml.number(x, 0, kU16)));
+  for (const XMLElement* e = p->FirstChildElement("Entry"); e; e = e->NextSiblingElement("Entry")) {
+    EsiPdoEntry entry;
+    entry.line = e->GetLineNum();
+    entry.index = static_cast<std::uint16_t>(xml.number(xml.required(e, "Index"), 0, kU16));
+    entry.subindex = static_cast<std::uint8_t>(xml.optional_number(e, "SubIndex", 0, kU8).value_or(0));
+    entry.bit_length = static_cast<std::uint16_t>(xml.number(xml.required(e, "BitLen"), 1, kU8));
+    entry.name = XmlReading::english(e, "Name");
+    entry.data_type = XmlReading::text(XmlReading::child(e, "DataType"));
+    pdo.entries.push_back(std::move(entry));
+  }
+  return pdo;
+}
 
 std::vector<EsiDevice> parse_esi(std::string_view text, const std::string& file) {
   tinyxml2::XMLDocument doc;

@@ -7,11 +7,15 @@
 #include <vector>
 
 #include "vdrive/esi/esi_device.hpp"
+#include "vdrive/esi/xml_reading.hpp"
 
 namespace vdrive::esi {
 
 std::vector<EsiDevice> read_esi_file(const std::string& path);
 // The same for a document in memory; `file` names it in messages.
 std::vector<EsiDevice> parse_esi(std::string_view xml, const std::string& file);
+
+// One <RxPdo>/<TxPdo> (ETG.2000 PdoType; an ENI's <ProcessData> uses the same type).
+EsiPdo read_pdo(const XmlReading& xml, const tinyxml2::XMLElement* pdo);
 
 }  // namespace vdrive::esi

@@ -7,11 +7,17 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
+#include "vdrive/esi/eni_slave.hpp"
+#include "vdrive/esi/eni_slave_device.hpp"
 #include "vdrive/esi/esi_error.hpp"
+#include "vdrive/esi/esi_import.hpp"
 #include "vdrive/esi/esi_reader.hpp"
 #include "vdrive/esi/xml_reading.hpp"
+#include "vdrive/machine/eni_init_commands.hpp"
+#include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
 namespace vdrive::machine {
@@ -74,6 +80,70 @@ int port_number(const esi::XmlReading& xml, const XMLElement* port) {
   xml.fail(port, fmt::format("'{}': expected a port A, B, C or D", t));
 }
 
+// Where vdrive looked for a device, for messages: the search directories and the files that
+// could not be read.
+std::string searched(const std::vector<std::string>& esi_dirs, const std::vector<std::string>& notes) {
+  std::string dirs;
+  for (const std::string& d : esi_dirs) dirs += (dirs.empty() ? "" : ", ") + d;
+  std::string skipped;
+  for (const std::string& n : notes)
+    if (n.rfind("skipped ", 0) == 0) skipped += "\n  " + n;
+  return fmt::format("searched {}{}", dirs.empty() ? "no --esi-dir" : dirs,
+                     skipped.empty() ? "" : "; files that could not be read:" + skipped);
+}
+
+// A slave nothing matches: served from the ENI's own description (esi/eni_slave_device.hpp), named
+// FILE.xml#PHYSADDR, with a warning saying what was assumed; refused where the ENI says too little.
+esi::ImportedDevice serve_from_eni(const esi::EniSlave& s, const std::string& path, const std::string& who,
+                                   const std::string& searched, NetworkSlave& slave, EniNetwork& out) {
+  const std::string unmatched = fmt::format("no built-in product and no ESI device matches it ({})", searched);
+  if (!s.phys_addr)
+    throw NetworkFileError(fmt::format("{}:{}: <Slave>: {}: {}; without a <PhysAddr> it cannot be served from the "
+                                       "ENI alone", path, s.line, who, unmatched));
+  esi::EniSlaveDevice d;
+  esi::ImportedDevice imported;
+  try {
+    d = esi::eni_slave_device(s);
+    imported = esi::import_device(d.device);
+  } catch (const profile::ProfileError& e) {
+    throw NetworkFileError(fmt::format("{}; {}", e.what(), unmatched));
+  }
+  slave.device = esi::eni_slave_reference(fs::absolute(path).lexically_normal().string(), *s.phys_addr);
+  std::string assumed;
+  for (const std::string& a : d.assumptions) assumed += (assumed.empty() ? "" : "; ") + a;
+  const std::string note = fmt::format("{}: served from the ENI alone as {}: no ESI for vendor 0x{:08X} product "
+                                       "0x{:08X} ({}); assumed: {}", who, slave.device, s.vendor_id, s.product_code,
+                                       searched, assumed);
+  out.notes.push_back(note);
+  out.warnings.push_back(note);
+  for (const std::string& c : d.created) {
+    out.notes.push_back(fmt::format("{}: {}", who, c));
+    out.warnings.push_back(out.notes.back());
+  }
+  return imported;
+}
+
+// The slave's init commands as its device would answer them (eni_init_commands.hpp): each one it
+// refuses is a warning.
+void check(const esi::EniSlave& s, const NetworkSlave& slave, const std::optional<esi::ImportedDevice>& served_alone,
+           const std::string& profile_dir, const std::string& who, EniNetwork& out) {
+  if (s.coe_init_commands.empty() && s.init_commands.empty()) return;
+  std::vector<std::string> refused;
+  if (served_alone) {
+    refused = check_init_commands(s, served_alone->profile, *served_alone->dictionary, who);
+  } else if (esi::is_esi_reference(slave.device)) {
+    const std::shared_ptr<const esi::ImportedDevice> d = esi::load_esi_device(slave.device);
+    refused = check_init_commands(s, d->profile, *d->dictionary, who);
+  } else {
+    const profile::ProductProfile p = profile::load_profile(slave.device, profile_dir);
+    refused = check_init_commands(s, p, *od::shared_dictionary(p, profile_dir), who);
+  }
+  for (std::string& r : refused) {
+    out.notes.push_back(r);
+    out.warnings.push_back(std::move(r));
+  }
+}
+
 }  // namespace
 
 EniNetwork read_eni(const std::string& path, const std::vector<std::string>& esi_dirs, const std::string& profile_dir) {
@@ -107,20 +177,18 @@ EniNetwork parse_eni(std::string_view s, const std::string& path, const std::vec
       int port = 1;
     };
     std::vector<Previous> previous;
-    constexpr std::int64_t kU32 = 0xFFFFFFFF;
     for (const XMLElement* sl = config->FirstChildElement("Slave"); sl; sl = sl->NextSiblingElement("Slave")) {
-      const XMLElement* info = xml.required(sl, "Info");
+      const esi::EniSlave eni_slave = esi::read_eni_slave(xml, sl);
       NetworkSlave slave;
       slave.line = sl->GetLineNum();
-      slave.name = esi::XmlReading::text(esi::XmlReading::child(info, "Name"));
+      slave.name = eni_slave.name;
       if (slave.name.empty()) slave.name = fmt::format("slave {}", out.network.slaves.size() + 1);
       if (const int seen = names[slave.name]++; seen > 0) slave.name += fmt::format(" ({})", seen + 1);  // unique
-      const Identity id{static_cast<std::uint32_t>(xml.number(xml.required(info, "VendorId"), 0, kU32)),
-                        static_cast<std::uint32_t>(xml.number(xml.required(info, "ProductCode"), 0, kU32)),
-                        static_cast<std::uint32_t>(xml.optional_number(info, "RevisionNo", 0, kU32).value_or(0))};
-      const auto phys = static_cast<std::uint16_t>(xml.optional_number(info, "PhysAddr", 0, 0xFFFF).value_or(0));
+      const Identity id{eni_slave.vendor_id, eni_slave.product_code, eni_slave.revision};
+      const std::uint16_t phys = eni_slave.phys_addr.value_or(0);
       const std::string who = fmt::format("slave {} '{}' (vendor 0x{:08X}, product 0x{:08X}, revision 0x{:08X})",
                                           out.network.slaves.size() + 1, slave.name, id.vendor, id.product, id.revision);
+      std::optional<esi::ImportedDevice> served_alone;
       const auto builtin = std::find_if(builtins.begin(), builtins.end(), [&](const Candidate& c) {
         return c.id.vendor == id.vendor && (c.id.product & c.mask) == (id.product & c.mask);
       });
@@ -149,16 +217,10 @@ EniNetwork parse_eni(std::string_view s, const std::string& path, const std::vec
           out.notes.push_back(fmt::format("{}: no ESI with its revision; served as {} (revision 0x{:08X})", who,
                                           near->reference, near->id.revision));
         } else {
-          std::string dirs;
-          for (const std::string& d : esi_dirs) dirs += (dirs.empty() ? "" : ", ") + d;
-          std::string skipped;
-          for (const std::string& n : out.notes)
-            if (n.rfind("skipped ", 0) == 0) skipped += "\n  " + n;
-          xml.fail(sl, fmt::format("{}: no built-in product and no ESI device matches it (searched {}); add its "
-                                   "ESI file to an --esi-dir{}", who, dirs.empty() ? "no --esi-dir" : dirs,
-                                   skipped.empty() ? "" : "; files that could not be read:" + skipped));
+          served_alone = serve_from_eni(eni_slave, path, who, searched(esi_dirs, out.notes), slave, out);
         }
       }
+      check(eni_slave, slave, served_alone, profile_dir, who, out);
       Previous prev;
       if (const XMLElement* pp = esi::XmlReading::child(sl, "PreviousPort")) {
         // Several <PreviousPort> (redundancy alternatives): the one Selected, else the first.
