@@ -1,6 +1,6 @@
 // The Sampler allocates nothing on the loop thread once constructed: polls with nothing due,
-// samples of every slave, a full queue, and events (fault started/ended, as the sampler notices
-// them). Global operator new is replaced for the whole test_telemetry binary by a counting one; it
+// samples of every slave, a full queue, and events (fault started/ended, a named signal changed,
+// as the sampler notices them). Global operator new is replaced for the whole test_telemetry binary by a counting one; it
 // only counts, so every other test behaves as before. Control requests are the exception, as with
 // the control socket's FaultService: carrying out a fault request allocates.
 #include <gtest/gtest.h>
@@ -33,7 +33,9 @@ namespace {
 
 TEST(SamplerNoAllocation, PollsSamplesDropsAndFaultEventsAllocateNothing) {
   VirtualClock clock(0);
-  network::Network net(std::vector<std::string>{"a6b", "ds5c1", "ds1000a"}, clock);
+  network::NetworkOptions o;
+  o.signals = {{"home", network::SignalPoint{0, network::PlantConnection::home, 0, 0}, ""}};
+  network::Network net(std::vector<std::string>{"a6b", "ds5c1", "ds1000a"}, clock, o);
   runtime::LoopCounters counters;
   TurnaroundStats turnaround;
   fault::FaultInjector faults(net, nullptr);
@@ -47,7 +49,10 @@ TEST(SamplerNoAllocation, PollsSamplesDropsAndFaultEventsAllocateNothing) {
 
   const long before = g_allocations.load();
   Nanos t = 1'000'000;
-  for (; t < 3'000'000'000; t += 250'000) s.poll(t);  // 4 polls per sample; the queue fills and drops
+  for (; t < 3'000'000'000; t += 250'000) {  // 4 polls per sample; the queue fills and drops
+    if (t % 100'000'000 == 0) net.signal(0).write(net.signal(0).read() ^ 1);  // signal events too
+    s.poll(t);
+  }
   const long during = g_allocations.load() - before;
   EXPECT_EQ(during, 0);
   EXPECT_GT(s.dropped(), 0u);

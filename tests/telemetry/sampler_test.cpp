@@ -180,6 +180,33 @@ TEST_F(SamplerTest, PlantSetChangesTheExternalLoadAndIsAnEvent) {
   EXPECT_STREQ(events[0].text.data(), "external load 0.5");
 }
 
+TEST(SamplerSignals, ANamedSignalThatChangesIsAnEventWithItsNameAndPoint) {
+  VirtualClock clock{0};
+  network::NetworkOptions o;
+  o.slave_names = {"x", "y"};
+  o.signals = {{"y_probe", network::SignalPoint{1, network::PlantConnection::probe1, 0, 0}, ""}};
+  network::Network net(std::vector<std::string>{"a6b", "ds5c1"}, clock, o);
+  Sampler s(net, 100.0);
+  s.poll(0);
+  net.signal(0).write(1);
+  s.poll(10'000'000);
+  s.poll(20'000'000);  // no change: no second event
+  net.signal(0).write(0);
+  s.poll(30'000'000);
+  std::vector<EventSample> events;
+  while (std::optional<Sample> x = s.pop())
+    if (const auto* e = std::get_if<EventSample>(&*x)) events.push_back(*e);
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].kind, EventKind::signal);
+  EXPECT_STREQ(event_kind_name(events[0].kind), "signal");
+  EXPECT_EQ(events[0].slave, 2);
+  EXPECT_EQ(events[0].value, 1u);
+  EXPECT_EQ(events[0].previous, 0u);
+  EXPECT_STREQ(events[0].text.data(), "y_probe (y.probe1) 0 -> 1");
+  EXPECT_EQ(events[1].time, 30'000'000);
+  EXPECT_STREQ(events[1].text.data(), "y_probe (y.probe1) 1 -> 0");
+}
+
 // AL state and 603Fh events compare with what the line had when the sampler started (the
 // integration test telemetry_dds.sh sees them change on a real line).
 TEST_F(SamplerTest, NoEventsWhileNothingChanges) {

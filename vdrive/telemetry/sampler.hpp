@@ -4,7 +4,7 @@
 // 60F4h, 603Fh and the plant's temperatures for a drive) and the line's counters into a
 // preallocated SPSC queue, and notes events by comparing with the previous sample: AL state
 // changes, 603Fh raised or cleared, faults started or ended (of the FaultInjector it watches,
-// whoever injected them). A full queue drops the sample and counts it; nothing blocks, nothing
+// whoever injected them), named signals (network/signal_point.hpp) changed. A full queue drops the sample and counts it; nothing blocks, nothing
 // allocates. Changes that come and go within one period are not seen.
 //
 // It also carries out the control topic's requests on the loop thread: they arrive through a
@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "common/clock.hpp"
@@ -71,6 +72,7 @@ private:
   };
   void sample(Nanos now);
   void sample_faults(Nanos now);
+  void sample_signals(Nanos now);
   void push(const Sample& s);
   void event(Nanos now, std::uint16_t slave, EventKind kind, std::uint32_t value, std::uint32_t previous, const char* text);
   control::ControlReply handle(const TelemetryRequest& r, Nanos now);
@@ -82,6 +84,8 @@ private:
   std::vector<std::optional<Drive>> drives_;  // per slave; empty for a slave without a drive
   std::vector<std::uint16_t> last_al_, last_error_;
   std::vector<int> last_faults_;  // ids, capacity reserved up front
+  std::vector<std::string> signal_labels_;   // per named signal: "door (di 0x6010:1)"
+  std::vector<std::int64_t> last_signals_;
   std::unique_ptr<runtime::SpscQueue<Sample, kQueueSize>> samples_;
   runtime::SpscQueue<TelemetryRequest, 8> requests_;
   runtime::SpscQueue<TelemetryReply, 8> replies_;

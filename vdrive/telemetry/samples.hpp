@@ -34,7 +34,7 @@ struct BusSample {
   Nanos turnaround_last = 0, turnaround_min = 0, turnaround_mean = 0, turnaround_max = 0;
 };
 
-enum class EventKind : std::uint8_t { al_state, alarm_raised, alarm_cleared, fault_injected, fault_cleared, plant_set };
+enum class EventKind : std::uint8_t { al_state, alarm_raised, alarm_cleared, fault_injected, fault_cleared, plant_set, signal };
 
 struct EventSample {
   Nanos time = 0;
