@@ -57,6 +57,27 @@ TEST_F(FaultServiceTest, CleanWireIsNotEngagedAndPassesFrames) {
   EXPECT_EQ(round_trip(), 2);
 }
 
+TEST_F(FaultServiceTest, ArmedFaultsAreInjectedWhenTheirTimeComes) {
+  fault::FaultSpec jam;
+  jam.kind = fault::FaultKind::jam;
+  jam.slave = 2;
+  fault::FaultSpec bad = jam;
+  bad.slave = 9;  // refused when its time comes: logged, the others still go in
+  const Nanos t0 = clock_.now();
+  service_.arm(jam, t0 + 5'000'000, "bench.yaml:9");
+  service_.arm(bad, t0 + 1'000'000, "bench.yaml:10");
+  EXPECT_TRUE(service_.has_armed());
+  EXPECT_EQ(service_.next_deadline(), t0 + 1'000'000);
+  service_.poll(t0 + 4'000'000);
+  EXPECT_TRUE(service_.injector().active().empty());
+  EXPECT_EQ(service_.next_deadline(), t0 + 5'000'000);
+  service_.poll(t0 + 5'000'000);
+  ASSERT_EQ(service_.injector().active().size(), 1u);
+  EXPECT_EQ(service_.injector().active()[0].spec.kind, fault::FaultKind::jam);
+  EXPECT_EQ(service_.injector().active()[0].spec.slave, 2);
+  EXPECT_GT(service_.next_deadline(), t0 + 5'000'000) << "nothing armed is left";
+}
+
 TEST_F(FaultServiceTest, DropCutsTheLineUntilCleared) {
   const ControlReply r = service_.handle(inject(fault::FaultKind::drop), clock_.now());
   ASSERT_TRUE(r.ok()) << r.error;

@@ -103,6 +103,36 @@ TEST(NetworkFile, PlantConnectionsAndNamedSignals) {
   EXPECT_EQ(o.wires.size(), 1u);
 }
 
+TEST(NetworkFile, FaultsAreArmedWithTheCataloguesFieldsAndATime) {
+  const machine::NetworkFile f = machine::parse_network_file(
+      "slaves:\n  - {name: x, device: a6b}\n  - {name: y, device: ds5c1}\nfaults:\n"
+      "  - {kind: link_down, slave: x, port: 1, at: 5s, duration: 200ms}\n  - {kind: jam, slave: 2}\n",
+      "n.yaml", ".");
+  ASSERT_EQ(f.faults.size(), 2u);
+  EXPECT_EQ(f.faults[0].spec.kind, fault::FaultKind::link_down);
+  EXPECT_EQ(f.faults[0].spec.slave, 1);
+  EXPECT_EQ(f.faults[0].spec.port, 1);
+  EXPECT_EQ(f.faults[0].spec.duration, 200'000'000);
+  EXPECT_EQ(f.faults[0].at, 5'000'000'000);
+  EXPECT_EQ(f.faults[0].origin, "n.yaml:5");
+  EXPECT_EQ(f.faults[1].spec.kind, fault::FaultKind::jam);
+  EXPECT_EQ(f.faults[1].spec.slave, 2);
+  EXPECT_EQ(f.faults[1].at, 0);
+}
+
+TEST(NetworkFile, AFaultMistakeIsNamedWithItsLineAndField) {
+  const std::string head = "slaves:\n  - {name: x, device: a6b}\nfaults:\n";
+  EXPECT_NE(error_of(head + "  - {kind: wobble}\n").find("n.yaml:4: faults[0].kind: unknown fault kind"), std::string::npos)
+      << error_of(head + "  - {kind: wobble}\n");
+  EXPECT_EQ(error_of(head + "  - {kind: jam, slave: z}\n"), "n.yaml:4: faults[0].slave: no slave 'z' (a name or a position 1-1)");
+  EXPECT_EQ(error_of(head + "  - {kind: jam, slave: x, probability: 0.5}\n"),
+            "n.yaml:4: faults[0].probability: does not apply to kind jam");
+  EXPECT_EQ(error_of(head + "  - {kind: jam, slave: x, at: 5}\n"),
+            "n.yaml:4: faults[0].at: expected a time with a unit (e.g. 5s, 250ms)");
+  EXPECT_EQ(error_of(head + "  - {kind: drop, duration: soon}\n"),
+            "n.yaml:4: faults[0].duration: 'soon' is not a time with a unit (e.g. 250ms, 1.5s)");
+}
+
 TEST(NetworkFile, SignalNamesAreChecked) {
   EXPECT_EQ(error_of("slaves:\n  - {name: x, device: a6b}\nsignals:\n  9lives: x.home\n"),
             "n.yaml:4: signals: '9lives' is not a signal name (letters, digits, '_' and '-', not starting with a digit)");

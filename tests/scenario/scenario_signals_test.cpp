@@ -1,5 +1,5 @@
-// Scenarios on a network file: `signal` steps set signals, `signal:` expectations read them, and
-// what a signal names must exist (line and reason otherwise).
+// Scenarios on a network file: `signal` steps set signals, `signal:` expectations read them, what a
+// signal names must exist (line and reason otherwise), and the file's armed faults happen.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -90,6 +90,25 @@ timeline:
 )";
   const ScenarioResult r = run_scenario(parse_scenario(text, kFile));
   EXPECT_NE(r.error.find(":4: signal \"x_home\": 5 is outside 0..1"), std::string::npos) << r.error;
+}
+
+// The network file's armed faults are steps of the run at their times.
+TEST(ScenarioNetworkFaults, ANetworkFilesArmedFaultHappensAtItsTime) {
+  const std::string text = R"(duration: 1s
+segment: {network: armed_fault.yaml}
+expect:
+  - {name: no alarm yet, slave: 1, object: 0x603F, equals: 0, at: 250ms}
+  - {name: encoder alarm, slave: 1, object: 0x603F, min: 1, by: 600ms}
+)";
+  const Scenario s = parse_scenario(text, kFile);
+  ASSERT_EQ(s.steps.size(), 1u);
+  EXPECT_EQ(s.steps[0].when.delay, 300'000'000);
+  ASSERT_TRUE(std::holds_alternative<FaultAction>(s.steps[0].action));
+  EXPECT_EQ(std::get<FaultAction>(s.steps[0].action).fault.kind, fault::FaultKind::encoder_error);
+  const ScenarioResult r = run_scenario(s);
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  ASSERT_EQ(r.expectations.size(), 2u);
+  for (const ExpectationResult& e : r.expectations) EXPECT_TRUE(e.passed) << e.name << ": " << e.message;
 }
 
 }  // namespace

@@ -277,6 +277,7 @@ void run(RunOptions o) {
   const runtime::LoopWaker waker;  // this thread serves: requests cut its wait short
   faults.set_wake([&waker] { waker.wake(); });
   const std::unique_ptr<control::ControlServer> control = o.no_control ? nullptr : open_control(o, faults);
+  for (const machine::ArmedFault& a : o.network.faults) faults.arm(a.spec, clock.now() + a.at, a.origin);
 
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
   spdlog::info("serving {} slave(s) on {}: {} (hop delay {} ns{}); SIGINT/SIGTERM stops",
@@ -297,7 +298,7 @@ void run(RunOptions o) {
   apply_time_slice(o);
   try {
     if (telemetry) runtime::serve(*network, telemetry->link(), clock, stop, counters, status.wrap(&telemetry->service()));
-    else runtime::serve(*network, impaired, clock, stop, counters, status.wrap(control ? &faults : nullptr));
+    else runtime::serve(*network, impaired, clock, stop, counters, status.wrap(control || faults.has_armed() ? &faults : nullptr));
   } catch (const link::LinkError& e) {  // the interface was removed while serving
     throw CliError(exit_code_for(e.kind()), e.what());
   }

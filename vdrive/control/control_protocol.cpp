@@ -9,7 +9,7 @@
 #include <set>
 
 #include "vdrive/fault/fault_fields.hpp"
-#include "vdrive/scenario/time_value.hpp"
+#include "common/time_text.hpp"
 
 namespace vdrive::control {
 namespace {
@@ -52,7 +52,7 @@ std::string text(const json& v, std::string_view name) {
 
 Nanos time(const json& v, std::string_view name) {
   const std::string t = text(v, name);
-  const std::optional<Nanos> ns = scenario::parse_time(t);
+  const std::optional<Nanos> ns = parse_time(t);
   if (!ns) fail(fmt::format("{}: \"{}\" is not a time with a unit (e.g. \"250ms\", \"1.5s\")", field(name), t));
   return *ns;
 }

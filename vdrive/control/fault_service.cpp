@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 #include <poll.h>
+#include <spdlog/spdlog.h>
 #include <sys/eventfd.h>
 #include <unistd.h>
 
@@ -44,9 +45,30 @@ void FaultService::poll(Nanos now) {
       (void)!::write(reply_event_, &one, sizeof one);
     }
   }
+  if (next_armed() <= now) inject_armed(now);
   if (injector_.next_deadline() <= now) {
     injector_.tick(now);
     changed();
+  }
+}
+
+void FaultService::arm(const fault::FaultSpec& spec, Nanos at, std::string origin) {
+  const auto pos = std::upper_bound(armed_.begin(), armed_.end(), at, [](Nanos t, const Armed& a) { return t < a.at; });
+  armed_.insert(pos, Armed{spec, at, std::move(origin)});
+}
+
+Nanos FaultService::next_armed() const { return armed_done_ < armed_.size() ? armed_[armed_done_].at : kNever; }
+
+void FaultService::inject_armed(Nanos now) {
+  while (armed_done_ < armed_.size() && armed_[armed_done_].at <= now) {
+    const Armed& a = armed_[armed_done_++];
+    ControlRequest r;
+    r.op = ControlRequest::Op::inject;
+    r.fault = a.spec;
+    const ControlReply reply = handle(r, now);
+    if (!reply.ok()) spdlog::warn("{}: armed fault not injected: {}", a.origin, reply.error);
+    else if (reply.id == 0) spdlog::info("{}: armed fault applied: {}", a.origin, fault::describe(a.spec));
+    else spdlog::info("{}: armed fault {} injected: {}", a.origin, reply.id, fault::describe(a.spec));
   }
 }
 

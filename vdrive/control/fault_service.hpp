@@ -7,7 +7,10 @@
 // After every change the ImpairedLink (if any) re-reads the wire settings, so a clean wire
 // costs the frame path one branch.
 #include <cstdint>
+#include <algorithm>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "vdrive/control/control_request.hpp"
 #include "vdrive/fault/fault_injector.hpp"
@@ -28,7 +31,7 @@ public:
 
   // Loop thread.
   void poll(Nanos now) override;
-  Nanos next_deadline() const override { return injector_.next_deadline(); }
+  Nanos next_deadline() const override { return std::min(injector_.next_deadline(), next_armed()); }
   // Carries out one request now (poll() does this for each queued one).
   ControlReply handle(const ControlRequest& request, Nanos now);
 
@@ -37,12 +40,24 @@ public:
   ControlReply call(ControlRequest request, Nanos timeout);
 
   const fault::FaultInjector& injector() const { return injector_; }
+
+  // Before the loop starts: a fault to inject when the loop's clock reaches `at` (a network
+  // file's armed faults); the outcome is logged with `origin`, a refusal as a warning.
+  void arm(const fault::FaultSpec& spec, Nanos at, std::string origin);
+  bool has_armed() const { return !armed_.empty(); }
   // What call() does after queueing a request to cut the loop's wait short (runtime::LoopWaker).
   // Set before the loop and the control thread start.
   void set_wake(std::function<void()> wake) { wake_ = std::move(wake); }
 
 private:
+  struct Armed {
+    fault::FaultSpec spec;
+    Nanos at = 0;
+    std::string origin;
+  };
   void changed();
+  void inject_armed(Nanos now);
+  Nanos next_armed() const;
 
   network::Network& network_;
   fault::FaultInjector injector_;
@@ -52,6 +67,8 @@ private:
   int reply_event_ = -1;  // eventfd: the loop signals a reply
   std::function<void()> wake_;
   std::uint64_t next_seq_ = 1;
+  std::vector<Armed> armed_;      // sorted by `at`
+  std::size_t armed_done_ = 0;    // armed_[0, armed_done_) injected
 };
 
 }  // namespace vdrive::control

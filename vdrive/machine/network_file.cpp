@@ -12,7 +12,9 @@
 #include <set>
 #include <sstream>
 
+#include "common/time_text.hpp"
 #include "vdrive/esi/esi_import.hpp"
+#include "vdrive/machine/yaml_fault_source.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
 namespace vdrive::machine {
@@ -143,7 +145,7 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
     throw NetworkFileError(fmt::format("{}:{}: not YAML: {}", file, e.mark.line + 1, e.msg));
   }
   if (!root.IsMap()) r.fail(root, "expected a mapping with 'slaves' (and 'wires', 'signals')");
-  r.only_keys(root, "(top level)", {"slaves", "wires", "signals"});
+  r.only_keys(root, "(top level)", {"slaves", "wires", "signals", "faults"});
   const YAML::Node slaves = root["slaves"];
   if (!slaves || !slaves.IsSequence() || slaves.size() == 0) r.fail(root, "slaves: expected a list of at least one slave");
 
@@ -256,6 +258,26 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
       sig.point = signal_point(r, kv.second, "signals." + name, f);
       sig.origin = fmt::format("{}:{}", file, kv.first.Mark().line + 1);
       f.signals.push_back(std::move(sig));
+    }
+  }
+
+  if (const YAML::Node faults = root["faults"]) {
+    if (!faults.IsSequence()) r.fail(faults, "faults: expected a list of {kind: KIND, ...} (docs/faults.md)");
+    std::vector<std::string> names;
+    for (const NetworkSlave& sl : f.slaves) names.push_back(sl.name);
+    for (std::size_t i = 0; i < faults.size(); ++i) {
+      const YAML::Node n = faults[i];
+      const std::string where = fmt::format("faults[{}]", i);
+      if (!n.IsMap()) r.fail(n, where + ": expected a mapping with 'kind' and the kind's fields (docs/faults.md)");
+      ArmedFault a;
+      a.spec = read_yaml_fault(n, file, where, names, {"at"});
+      if (n["at"]) {
+        const auto t = n["at"].IsScalar() ? parse_time(n["at"].Scalar()) : std::nullopt;
+        if (!t) r.fail(n["at"], where + ".at: expected a time with a unit (e.g. 5s, 250ms)");
+        a.at = *t;
+      }
+      a.origin = fmt::format("{}:{}", file, n.Mark().line + 1);
+      f.faults.push_back(std::move(a));
     }
   }
   return f;

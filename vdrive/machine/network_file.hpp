@@ -2,7 +2,7 @@
 // A network file (YAML): the one place a bench is described. The slaves in cable order, each a
 // built-in product or an ESI device, with its name, station alias, plant and place in the
 // topology (which port of which slave its port 0 is cabled to), the wires between signal points
-// (slaves' entries and drives' plant connections), and names for signal points. `vdrive run --network FILE` serves it; docs/networks.md has the format:
+// (slaves' entries and drives' plant connections), names for signal points, and faults to arm. `vdrive run --network FILE` serves it; docs/networks.md has the format:
 //
 //   slaves:
 //     - {name: coupler, device: io_terminals.xml:0x044c2c52}
@@ -13,6 +13,8 @@
 //     - {from: do 0x7000:2, to: x.probe1}          # a plant connection (network/signal_point.hpp)
 //   signals:
 //     door: di 0x6000:2                             # named for the control socket, scenarios, DDS
+//   faults:
+//     - {kind: link_down, slave: coupler, port: 1, at: 5s, duration: 200ms}
 //
 // Paths (ESI files, plants) are relative to the network file. Every mistake is a
 // NetworkFileError "<file>:<line>: <field>: <what>".
@@ -21,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "common/clock.hpp"
+#include "vdrive/fault/fault_spec.hpp"
 #include "vdrive/network/network.hpp"
 
 namespace vdrive::machine {
@@ -40,12 +44,21 @@ struct NetworkSlave {
   int line = 0;                           // 1-based, for messages
 };
 
+// A fault the file arms: injected `at` after the network starts serving (docs/faults.md kinds and
+// fields; `slave` by name or position).
+struct ArmedFault {
+  fault::FaultSpec spec;
+  Nanos at = 0;
+  std::string origin;                     // "bench.yaml:21", for logs
+};
+
 struct NetworkFile {
   std::string file;
   std::vector<NetworkSlave> slaves;
   network::Topology topology;             // empty: the line
   std::vector<network::SignalWire> wires;
   std::vector<network::NamedSignal> signals;
+  std::vector<ArmedFault> faults;
 };
 
 // The file's aliases, identities, topology, wires, signals and slave names as network options

@@ -18,7 +18,7 @@
 #include "vdrive/esi/esi_import.hpp"
 #include "vdrive/machine/network_file.hpp"
 #include "vdrive/profile/profile_loader.hpp"
-#include "vdrive/scenario/time_value.hpp"
+#include "common/time_text.hpp"
 
 namespace vdrive::scenario {
 namespace {
@@ -531,6 +531,15 @@ Scenario parse_scenario(std::string_view text, const std::string& file) {
     }
     c.slave_names = s.network.slave_names;
     c.signals = s.network.signals;
+    // The file's armed faults are steps at their times, before the timeline's.
+    for (const machine::ArmedFault& a : nf.faults) {
+      Step st;
+      st.line = segment.line();
+      st.when.delay = a.at;
+      st.when.line = st.line;
+      st.action = FaultAction{a.spec, ""};
+      s.steps.push_back(std::move(st));
+    }
   }
   const YAML::Node slaves = segment.has("network") ? YAML::Node(YAML::NodeType::Sequence) : segment.sequence("slaves");
   if (!segment.has("network") && slaves.size() == 0) segment.fail("slaves", "a segment needs at least one slave");

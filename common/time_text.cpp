@@ -1,11 +1,11 @@
-#include "vdrive/scenario/time_value.hpp"
+#include "common/time_text.hpp"
 
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <string>
 
-namespace vdrive::scenario {
+namespace vdrive {
 
 std::optional<Nanos> parse_time(std::string_view text) {
   while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
@@ -31,4 +31,4 @@ std::optional<Nanos> parse_time(std::string_view text) {
   return static_cast<Nanos>(std::llround(ns));
 }
 
-}  // namespace vdrive::scenario
+}  // namespace vdrive

@@ -1,11 +1,11 @@
-#include "vdrive/scenario/time_value.hpp"
+#include "common/time_text.hpp"
 
 #include <gtest/gtest.h>
 
-namespace vdrive::scenario {
+namespace vdrive {
 namespace {
 
-TEST(ScenarioTime, EveryUnit) {
+TEST(TimeText, EveryUnit) {
   EXPECT_EQ(parse_time("40ns"), 40);
   EXPECT_EQ(parse_time("125us"), 125'000);
   EXPECT_EQ(parse_time("250ms"), 250'000'000);
@@ -15,7 +15,7 @@ TEST(ScenarioTime, EveryUnit) {
   EXPECT_EQ(parse_time("0s"), 0);
 }
 
-TEST(ScenarioTime, NumbersWithoutAUnitOrWithAWrongOneAreRefused) {
+TEST(TimeText, NumbersWithoutAUnitOrWithAWrongOneAreRefused) {
   EXPECT_FALSE(parse_time("250"));
   EXPECT_FALSE(parse_time("250 m"));
   EXPECT_FALSE(parse_time("-1ms"));
@@ -26,4 +26,4 @@ TEST(ScenarioTime, NumbersWithoutAUnitOrWithAWrongOneAreRefused) {
 }
 
 }  // namespace
-}  // namespace vdrive::scenario
+}  // namespace vdrive
