@@ -125,6 +125,25 @@ TEST(ScenarioLoader, MistakesNameFileLineColumnAndField) {
   EXPECT_NE(error_of("duration: [1s\n").find("t.yaml:"), std::string::npos);
 }
 
+// A misspelt key is named as itself, with the key it was probably meant to be, before anything
+// it leaves missing; a misspelt mode gets the mode names.
+TEST(ScenarioLoader, TyposAreNamedWithWhatWasMeant) {
+  const std::string head = "duration: 1s\nsegment:\n  slaves:\n    - product: a6b\n";
+  EXPECT_EQ(error_of("duraton: 1s\nsegment: {slaves: [{product: a6b}]}\n"),
+            "t.yaml:1:1: duraton: unknown key \"duraton\", did you mean \"duration\"?");
+  EXPECT_EQ(error_of("duration: 1s\nsegmnt: {slaves: [{product: a6b}]}\n"),
+            "t.yaml:2:1: segmnt: unknown key \"segmnt\", did you mean \"segment\"?");
+  EXPECT_EQ(error_of(head + "timeline:\n  - {at: 1s, enable: {slave: 1, mode: cps}}\n"),
+            "t.yaml:6:39: timeline[0].enable.mode: unknown mode \"cps\", did you mean \"csp\"? (pp, pv, tq, hm, ip, "
+            "csp, csv, cst, or a 6060h number)");
+  EXPECT_EQ(error_of(head + "timeline:\n  - {at: 1s, sdo_wirte: {slave: 1, index: 0x6060, value: 8}}\n"),
+            "t.yaml:6:14: timeline[0].sdo_wirte: unknown key \"sdo_wirte\", did you mean \"sdo_write\"?");
+  EXPECT_EQ(error_of(head + "expect:\n  - {slave: 1, objcet: 0x6041, equals: 1, at: 1s}\n"),
+            "t.yaml:6:16: expect[0].objcet: unknown key \"objcet\", did you mean \"object\"?");
+  EXPECT_EQ(error_of(head + "master: {cycle: 1ms, dcc: true}\n"),
+            "t.yaml:5:22: master.dcc: unknown key, did you mean \"dc\"?");
+}
+
 TEST(ScenarioLoader, LinkDownNamesACableByTheSlaveItLeadsIntoOrByAPort) {
   const std::string head = "duration: 1s\nsegment:\n  slaves:\n    - product: a6b\n    - product: ds5c1\n";
   const Scenario s = parse_scenario(head + "timeline:\n  - {at: 1ms, fault: {kind: link_down, slave: 2}}\n"

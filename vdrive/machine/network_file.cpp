@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "common/nearest_word.hpp"
 #include "common/time_text.hpp"
 #include "vdrive/esi/esi_import.hpp"
 #include "vdrive/machine/yaml_fault_source.hpp"
@@ -37,12 +38,10 @@ public:
     for (const auto& kv : map) {
       const std::string key = kv.first.Scalar();
       if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      std::string best;
-      std::size_t best_distance = 3;
-      for (const std::string& a : allowed)
-        if (const std::size_t d = distance(key, a); d < best_distance) best = a, best_distance = d;
+      const std::vector<std::string_view> candidates(allowed.begin(), allowed.end());
+      const auto best = nearest_word(key, candidates);
       fail(kv.first, fmt::format("{}: unknown key '{}'{} (keys: {})", where, key,
-                                 best.empty() ? "" : fmt::format(", did you mean '{}'?", best), join(allowed)));
+                                 best ? fmt::format(", did you mean '{}'?", *best) : "", join(allowed)));
     }
   }
 
@@ -58,20 +57,6 @@ private:
     std::string s;
     for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
     return s;
-  }
-  static std::size_t distance(const std::string& a, const std::string& b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-      std::size_t diagonal = row[0];
-      row[0] = i;
-      for (std::size_t j = 1; j <= b.size(); ++j) {
-        const std::size_t up = row[j];
-        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-        diagonal = up;
-      }
-    }
-    return row[b.size()];
   }
 
   std::string file_, base_;

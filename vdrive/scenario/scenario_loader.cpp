@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <set>
+#include <span>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -18,6 +19,7 @@
 #include "vdrive/esi/esi_import.hpp"
 #include "vdrive/machine/network_file.hpp"
 #include "vdrive/profile/profile_loader.hpp"
+#include "common/nearest_word.hpp"
 #include "common/time_text.hpp"
 
 namespace vdrive::scenario {
@@ -32,13 +34,33 @@ public:
     if (!node_.IsMap()) fail_at(node_, path_, "expected a mapping");
   }
 
-  bool has(std::string_view key) const { return static_cast<bool>(node_[std::string(key)]); }
+  bool has(std::string_view key) const {
+    asked_.insert(std::string(key));
+    return static_cast<bool>(node_[std::string(key)]);
+  }
 
   YAML::Node get(std::string_view key) {
+    asked_.insert(std::string(key));
     const YAML::Node v = node_[std::string(key)];
-    if (!v) fail_at(node_, path_, fmt::format("missing \"{}\"", key));
+    if (!v) {
+      const std::string_view wanted[] = {key};
+      misspelt(wanted);  // "duraton:" is reported as itself, not as a missing "duration"
+      fail_at(node_, path_, fmt::format("missing \"{}\"", key));
+    }
     used_.insert(std::string(key));
     return v;
+  }
+
+  // A key of this mapping that nothing asked for and that is a near miss of one of `candidates`
+  // fails as a misspelling of it.
+  void misspelt(std::span<const std::string_view> candidates) const {
+    for (const auto& kv : node_) {
+      const std::string k = kv.first.Scalar();
+      if (asked_.count(k)) continue;
+      // Short keys ("at", "by", "id") are a letter or two apart from each other: one edit only.
+      if (const auto best = nearest_word(k, candidates, k.size() <= 3 ? 1 : 2))
+        fail_at(kv.first, field(k), fmt::format("unknown key \"{}\", did you mean \"{}\"?", k, *best));
+    }
   }
 
   std::string field(std::string_view key) const { return path_.empty() ? std::string(key) : path_ + "." + std::string(key); }
@@ -96,7 +118,10 @@ public:
   void finish() const {
     for (const auto& kv : node_) {
       const std::string k = kv.first.Scalar();
-      if (!used_.count(k)) fail_at(kv.first, field(k), "unknown key");
+      if (used_.count(k)) continue;
+      const std::vector<std::string_view> known(asked_.begin(), asked_.end());
+      const auto best = nearest_word(k, known);
+      fail_at(kv.first, field(k), best ? fmt::format("unknown key, did you mean \"{}\"?", *best) : "unknown key");
     }
   }
 
@@ -127,6 +152,7 @@ private:
   const std::string& file_;
   std::string path_;
   std::set<std::string, std::less<>> used_;
+  mutable std::set<std::string, std::less<>> asked_;  // every key looked for, for suggestions
 };
 
 constexpr std::int64_t kI32Min = std::numeric_limits<std::int32_t>::min();
@@ -170,6 +196,14 @@ std::int8_t mode_of(Map& m, std::string_view key) {
   if (v.IsScalar())
     for (const auto& [n, value] : kNames)
       if (v.Scalar() == n) return value;
+  std::int64_t number = 0;
+  if (v.IsScalar() && !YAML::convert<std::int64_t>::decode(v, number)) {
+    std::vector<std::string_view> names;
+    for (const auto& [n, value] : kNames) names.push_back(n);
+    const auto best = nearest_word(v.Scalar(), names);
+    m.fail_at(v, m.field(key), fmt::format("unknown mode \"{}\"{} (pp, pv, tq, hm, ip, csp, csv, cst, or a 6060h number)",
+                                           v.Scalar(), best ? fmt::format(", did you mean \"{}\"?", *best) : ""));
+  }
   return static_cast<std::int8_t>(m.integer_of(v, m.field(key), -128, 127));
 }
 
@@ -279,7 +313,10 @@ Action action_of(Map& step, const Context& c) {
     if (!which.empty()) step.fail(a, fmt::format("a step has one action; this one has \"{}\" and \"{}\"", which, a));
     which = a;
   }
-  if (which.empty()) step.fail("", "a step needs one action: state, sdo_write, sdo_read, controlword, mode, enable, disable, target, motion, fault, clear_fault, acknowledge or signal");
+  if (which.empty()) {
+    step.misspelt(kActions);
+    step.fail("", "a step needs one action: state, sdo_write, sdo_read, controlword, mode, enable, disable, target, motion, fault, clear_fault, acknowledge or signal");
+  }
   Map m = step.map(which);
   if (which == "state") {
     StateAction a{slave_of(m, c, true), state_of(m, "to")};
@@ -385,7 +422,10 @@ Probe probe_of(Map& m, const Context& c) {
     if (!which.empty()) m.fail(k, fmt::format("an expectation measures one thing; this one has \"{}\" and \"{}\"", which, k));
     which = k;
   }
-  if (which.empty()) m.fail("", "an expectation needs what it measures: object, al_state, al_status_code, register, master or signal");
+  if (which.empty()) {
+    m.misspelt(kProbes);
+    m.fail("", "an expectation needs what it measures: object, al_state, al_status_code, register, master or signal");
+  }
   if (which == "signal") {
     p.kind = Probe::Kind::signal;
     p.signal = signal_of(m, "signal", c);
