@@ -8,7 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libeigen3-dev libode-dev
-  libtinyxml2-dev
+  libtinyxml2-dev libtomlplusplus-dev
   fastddsgen libfastrtps-dev libfastcdr-dev
   gnuplot-nox libpng-dev
   iproute2 tshark procps

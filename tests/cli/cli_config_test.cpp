@@ -84,6 +84,31 @@ TEST_F(CliConfig, AnUnknownKeyIsNamedWithItsSectionAndFile) {
   expect_error(vdrive({"--config", section, "list-drives"}), {section, "unknown key 'sede' in [scenario.run]"});
 }
 
+// The file is TOML, read by a TOML parser: a syntax error is one, with its line and column, for
+// every command alike; a section that is no command is named with the nearest one.
+TEST_F(CliConfig, ATomlSyntaxErrorIsNamedWithItsLineAndColumn) {
+  const std::string unclosed = file("unclosed.toml", "[run]\ndrive = [\"a6b\", \"ds5c1\"\nhop-delay = 500\n");
+  const ProcessResult listed = vdrive({"--config", unclosed, "list-drives"});
+  expect_error(listed, {"config file '" + unclosed + "':3:", "not TOML"});
+  const ProcessResult run = vdrive({"--config", unclosed, "run", "--iface", "lo"});
+  expect_error(run, {"config file '" + unclosed + "':3:", "not TOML"});
+  EXPECT_EQ(run.err.find("unknown product"), std::string::npos) << "the broken array is not read as drive names: " << run.err;
+}
+
+TEST_F(CliConfig, AnUnknownSectionIsNamedWithTheNearestCommand) {
+  const std::string f = file("runn.toml", "log-level = \"info\"\n[runn]\ndrive = [\"a6b\"]\n");
+  expect_error(vdrive({"--config", f, "list-drives"}),
+               {"config file '" + f + "':2:2: unknown section [runn], did you mean [run]? (sections are commands: "});
+  const std::string nested = file("nested.toml", "[scenario.rnu]\nverbose = true\n");
+  expect_error(vdrive({"--config", nested, "list-drives"}), {"unknown section [scenario.rnu], did you mean [scenario.run]?"});
+}
+
+TEST_F(CliConfig, AValueNoOptionCanTakeIsNamed) {
+  const std::string f = file("tables.toml", "[run]\ndrive = [[\"a6b\"], [\"ds5c1\"]]\n");
+  expect_error(vdrive({"--config", f, "list-drives"}),
+               {"config file '" + f + "':2:", "'run.drive': an option takes a value or a list of values, not a list of lists"});
+}
+
 TEST_F(CliConfig, ABadValueIsNamedWithItsKeyAndFile) {
   const std::string f = file("bad.toml", "[run]\ndrive = [\"a6b\"]\nhop-delay = \"fast\"\n");
   expect_error(vdrive({"--config", f, "run", "--iface", "lo"}), {f, "key 'run.hop-delay'", "--hop-delay"});

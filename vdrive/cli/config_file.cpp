@@ -7,18 +7,25 @@
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/toml_config_check.hpp"
 
 namespace vdrive::cli {
 namespace {
 
-// CLI11's TOML reader, remembering the keys it read so an error can be traced to the file.
+// CLI11's TOML reader behind a TOML parser's check (toml_config_check.hpp), remembering the keys
+// it read so an error can be traced to the file.
 class RecordingToml : public CLI::ConfigTOML {
 public:
-  explicit RecordingToml(std::shared_ptr<std::vector<std::string>> keys) : keys_(std::move(keys)) {}
+  RecordingToml(std::shared_ptr<std::vector<std::string>> keys, const ConfigFile& owner, const CLI::App& app)
+      : keys_(std::move(keys)), owner_(owner), app_(app) {}
   std::vector<CLI::ConfigItem> from_config(std::istream& input) const override {
-    std::vector<CLI::ConfigItem> items = CLI::ConfigTOML::from_config(input);
+    std::stringstream text;
+    text << input.rdbuf();
+    check_toml_config(text.str(), owner_.file(), app_);
+    std::vector<CLI::ConfigItem> items = CLI::ConfigTOML::from_config(text);
     for (const CLI::ConfigItem& item : items)
       if (item.name != "++" && item.name != "--") keys_->push_back(item.fullname());
     return items;
@@ -26,6 +33,8 @@ public:
 
 private:
   std::shared_ptr<std::vector<std::string>> keys_;
+  const ConfigFile& owner_;
+  const CLI::App& app_;
 };
 
 bool given_on_command_line(const std::vector<std::string>& args, const std::string& option) {
@@ -58,7 +67,7 @@ void ConfigFile::add_to(CLI::App& app, const std::vector<std::string>& args) {
     default_path_ = default_config_path();
     if (!std::filesystem::is_regular_file(default_path_, ec)) default_path_.clear();
   }
-  app.config_formatter(std::make_shared<RecordingToml>(keys_));
+  app.config_formatter(std::make_shared<RecordingToml>(keys_, *this, app));
   app.allow_config_extras(CLI::config_extras_mode::error);
   app.set_config("--config", default_path_,
                  "Read options from this TOML file (default $VDRIVE_CONFIG, else ~/.config/vdrive/vdrive.toml if it "
@@ -67,12 +76,16 @@ void ConfigFile::add_to(CLI::App& app, const std::vector<std::string>& args) {
       ->check(CLI::ExistingFile.description(""));
 }
 
-std::string ConfigFile::explain(const CLI::Error& error, const std::vector<std::string>& args) const {
-  const std::string what = error.what();
-  std::string file = default_path_;
+std::string ConfigFile::file() const {
   // The raw value: as<>() would run the --config check again and throw from here.
   if (app_ != nullptr && app_->get_config_ptr() != nullptr && !app_->get_config_ptr()->results().empty())
-    file = app_->get_config_ptr()->results().front();
+    return app_->get_config_ptr()->results().front();
+  return default_path_;
+}
+
+std::string ConfigFile::explain(const CLI::Error& error, const std::vector<std::string>& args) const {
+  const std::string what = error.what();
+  const std::string file = this->file();
 
   const std::string unknown = "INI was not able to parse ";
   if (what.rfind(unknown, 0) == 0) {
