@@ -142,5 +142,22 @@ TEST(PdoLimits, ManualsLimits) {
   EXPECT_EQ(ds5c1.rx.max_entries, 24);       // L5597-L5602
 }
 
+// ESI devices number their PDOs with gaps (a 2-channel analog input terminal: 1A00h and 1A02h, one
+// per channel, 1A01h/1A03h being alternatives): every PDO of the rules is a mapping object, and
+// nothing below the first or above the last. (It once took 1A00h + the count: 1A02h was refused
+// at PreOp->SafeOp with AL 0024h.)
+TEST(PdoLimits, MappingObjectsWithGapsAreAllMappingObjects) {
+  profile::ProductProfile p;
+  p.pdo_rules.tx_objects = {{.index = 0x1A00}, {.index = 0x1A02}};
+  const PdoLimits l = limits_for(p);
+  EXPECT_TRUE(l.tx.is_mapping_object(0x1A00));
+  EXPECT_TRUE(l.tx.is_mapping_object(0x1A02));
+  EXPECT_FALSE(l.tx.is_mapping_object(0x19FF));
+  EXPECT_FALSE(l.tx.is_mapping_object(0x1A03));
+  // No RxPDOs: no mapping object in that direction.
+  EXPECT_FALSE(l.rx.is_mapping_object(0x1600));
+  EXPECT_FALSE(l.rx.is_mapping_object(0x15FF));
+}
+
 }  // namespace
 }  // namespace vdrive::firmware::pdo

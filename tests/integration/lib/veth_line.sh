@@ -5,6 +5,7 @@
 # The caller sets VDRIVE and MASTER, then calls:
 #   require_tools TOOL...     skip (exit 77) unless root and every TOOL is installed
 #   start_line [ARGS...]      namespace + veth + `vdrive run --iface S_IF ARGS...` (log: $WORK/vdrive.log)
+#   restart_line [ARGS...]    stop that `vdrive run` and start another on the same veth pair
 #   start_capture FILE        tshark on the master end, into FILE, until stop_capture
 #   wait_for_line [ARGS...]   retry `vdrive-master scan --iface M_IF ARGS...` until it answers
 #                             (its output: $WORK/scan.out, errors: $WORK/scan.err)
@@ -47,6 +48,12 @@ start_line() {
   ip link set "$S_IF" netns "$NS" || fail "cannot move $S_IF into $NS"
   ip link set "$M_IF" up
   ip -n "$NS" link set "$S_IF" up
+  ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" "$@" >"$WORK/vdrive.log" 2>&1 &
+  VDRIVE_PID=$!
+}
+
+restart_line() {
+  kill "$VDRIVE_PID" 2>/dev/null; wait "$VDRIVE_PID" 2>/dev/null
   ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" "$@" >"$WORK/vdrive.log" 2>&1 &
   VDRIVE_PID=$!
 }

@@ -11,8 +11,15 @@ DirectionLimits from_rules(std::uint16_t first_default,
                            const std::vector<profile::PdoObjectRule>& objects,
                            std::uint8_t max_assigned, std::uint16_t max_bytes) {
   DirectionLimits d;
-  d.first_index = objects.empty() ? first_default : objects.front().index;
-  d.mapping_objects = static_cast<std::uint8_t>(objects.size());
+  d.first_index = first_default;
+  d.last_index = static_cast<std::uint16_t>(first_default - 1);  // none
+  if (!objects.empty()) {
+    d.first_index = d.last_index = objects.front().index;
+    for (const profile::PdoObjectRule& o : objects) {
+      d.first_index = std::min(d.first_index, o.index);
+      d.last_index = std::max(d.last_index, o.index);
+    }
+  }
   for (const profile::PdoObjectRule& o : objects) d.max_entries = std::max(d.max_entries, o.max_entries);
   d.max_assigned = max_assigned;
   d.max_bytes = max_bytes;

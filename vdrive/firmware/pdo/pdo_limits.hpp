@@ -32,15 +32,16 @@ inline constexpr int kMaxMappedEntries = 256;   // per direction, all assigned P
 inline constexpr int kMaxPdoBytes = 1024;       // per direction
 
 struct DirectionLimits {
+  // The mapping objects lie in first_index..last_index (none when last_index < first_index). The
+  // range may have gaps (an ESI device's 1A00h and 1A02h): where it matters, the dictionary says
+  // which objects exist.
   std::uint16_t first_index = 0;      // 1600h / 1A00h
-  std::uint8_t mapping_objects = 0;   // 1600h..1600h+n-1
+  std::uint16_t last_index = 0;       // the highest mapping object
   std::uint8_t max_entries = 0;       // subindexes 01h..max of one mapping object
   std::uint8_t max_assigned = 0;      // 1C12h/1C13h subindex 00h maximum
   std::uint16_t max_bytes = 0;        // all assigned PDOs of the direction together
 
-  bool is_mapping_object(std::uint16_t index) const {
-    return index >= first_index && index < first_index + mapping_objects;
-  }
+  bool is_mapping_object(std::uint16_t index) const { return index >= first_index && index <= last_index; }
 };
 
 struct PdoLimits {

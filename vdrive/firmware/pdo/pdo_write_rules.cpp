@@ -119,8 +119,8 @@ void install_pdo_write_rules(od::ObjectStore& objects, const AlStateMachine& esm
     });
   };
   for (const DirectionLimits* dir : {&limits.rx, &limits.tx}) {
-    for (std::uint8_t k = 0; k < dir->mapping_objects; ++k) {
-      install(static_cast<std::uint16_t>(dir->first_index + k));
+    for (std::uint32_t index = dir->first_index; index <= dir->last_index; ++index) {
+      install(static_cast<std::uint16_t>(index));
     }
   }
   install(kRxAssign);
