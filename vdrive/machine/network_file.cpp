@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -13,6 +12,7 @@
 #include <sstream>
 
 #include "common/nearest_word.hpp"
+#include "common/number_text.hpp"
 #include "common/time_text.hpp"
 #include "vdrive/esi/esi_import.hpp"
 #include "vdrive/machine/yaml_fault_source.hpp"
@@ -62,18 +62,9 @@ private:
   std::string file_, base_;
 };
 
-std::optional<std::uint64_t> unsigned_number(std::string_view s) {
-  int base = 10;
-  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) s.remove_prefix(2), base = 16;
-  std::uint64_t v = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v, base);
-  if (s.empty() || ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
-  return v;
-}
-
 std::uint64_t number(const Reader& r, const YAML::Node& n, const std::string& field, std::uint64_t max) {
   if (!n.IsScalar()) r.fail(n, fmt::format("{}: expected a number", field));
-  const auto v = unsigned_number(n.Scalar());
+  const auto v = parse_unsigned(n.Scalar());
   if (!v) r.fail(n, fmt::format("{}: '{}' is not a number (decimal or 0x hex)", field, n.Scalar()));
   if (*v > max) r.fail(n, fmt::format("{}: {} is above {}", field, n.Scalar(), max));
   return *v;
@@ -95,7 +86,7 @@ std::size_t slave_ref(const Reader& r, const YAML::Node& n, const std::string& f
   const std::string s = text(r, n, field);
   for (std::size_t i = 0; i < f.slaves.size(); ++i)
     if (f.slaves[i].name == s) return i;
-  if (const auto v = unsigned_number(s); v && *v >= 1 && *v <= f.slaves.size()) return static_cast<std::size_t>(*v - 1);
+  if (const auto v = parse_unsigned(s); v && *v >= 1 && *v <= f.slaves.size()) return static_cast<std::size_t>(*v - 1);
   std::string names;
   for (const NetworkSlave& sl : f.slaves) names += (names.empty() ? "" : ", ") + sl.name;
   r.fail(n, fmt::format("{}: no slave '{}' (names: {}; or a position 1-{})", field, s, names, f.slaves.size()));

@@ -3,8 +3,9 @@
 #include <fmt/core.h>
 
 #include <array>
-#include <charconv>
 #include <stdexcept>
+
+#include "common/number_text.hpp"
 
 namespace vdrive::network {
 namespace {
@@ -12,19 +13,10 @@ namespace {
 constexpr std::array<std::string_view, 6> kConnectionNames = {"negative_limit", "positive_limit", "home",
                                                               "probe1",         "probe2",         "brake_release"};
 
-std::optional<std::uint64_t> unsigned_number(std::string_view s) {
-  int base = 10;
-  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) s.remove_prefix(2), base = 16;
-  std::uint64_t v = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v, base);
-  if (s.empty() || ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
-  return v;
-}
-
 std::size_t slave_of(std::string_view name, std::span<const std::string> names, std::string_view text) {
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return i;
-  if (const auto v = unsigned_number(name); v && *v >= 1 && *v <= names.size()) return static_cast<std::size_t>(*v - 1);
+  if (const auto v = parse_unsigned(name); v && *v >= 1 && *v <= names.size()) return static_cast<std::size_t>(*v - 1);
   std::string known;
   for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument(fmt::format("'{}': no slave '{}' (names: {}; or a position 1-{})", text, name, known,
@@ -65,8 +57,8 @@ SignalPoint parse_signal_point(std::string_view text, std::span<const std::strin
   p.slave = slave_of(text.substr(0, space), slave_names, text);
   const std::string_view entry = text.substr(space + 1);
   const std::size_t colon = entry.find(':');
-  const auto index = colon == std::string_view::npos ? std::nullopt : unsigned_number(entry.substr(0, colon));
-  const auto sub = colon == std::string_view::npos ? std::nullopt : unsigned_number(entry.substr(colon + 1));
+  const auto index = colon == std::string_view::npos ? std::nullopt : parse_unsigned(entry.substr(0, colon));
+  const auto sub = colon == std::string_view::npos ? std::nullopt : parse_unsigned(entry.substr(colon + 1));
   if (!index || *index > 0xFFFF || !sub || *sub > 0xFF)
     throw std::invalid_argument(fmt::format("'{}': the entry is INDEX:SUBINDEX, e.g. 0x7000:1", text));
   p.index = static_cast<std::uint16_t>(*index);
