@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Integration: a network file's armed fault. `vdrive run --network armed_fault.yaml` (an A6B whose
 # encoder fails 300 ms after serving starts) serves a veth end in a namespace; the fault is logged
-# with the file's line, listed by `vdrive fault list`, and the drive reports its alarm in 603Fh
-# to a master over CoE. A fault the file cannot arm is refused before serving, exit 2.
+# with the file's line, listed by `vdrive fault list`, the drive reports its alarm in 603Fh to a
+# master over CoE, and vdrive logs the alarm by name and the AL state changes. A fault the file
+# cannot arm is refused before serving, exit 2.
 #
 # Usage: bash armed_faults.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
 set -u
@@ -35,4 +36,11 @@ echo "$out"
 code=$(echo "$out" | sed -n 's/.*(\([0-9]*\))$/\1/p')   # "603F:00 = 0xFF15 (65301)"
 [ -n "$code" ] || fail "sdo-read printed no value: $out"
 [ "$code" -ne 0 ] || fail "the A6B reports no alarm after its encoder failed"
+# vdrive run logs what happens on the line at info level: the alarm by the product's name, AL
+# state changes a master asks for.
+grep -q "slave 1 (a6b): alarm 21.0 Encoder communication disconnect error protection (603Fh FF15h)" "$WORK/vdrive.log" \
+  || { cat "$WORK/vdrive.log"; fail "the alarm is not logged by name"; }
+"$MASTER" scan --iface "$M_IF" --state preop >/dev/null 2>&1 || fail "scan --state preop failed"
+sleep 0.4
+grep -q "slave 1 (a6b): Init -> PreOp" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "the AL state change is not logged"; }
 echo "PASS"

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <mutex>
 
+#include "vdrive/cli/line_changes.hpp"
 #include "vdrive/network/network.hpp"
 
 namespace vdrive::cli {
@@ -21,6 +22,7 @@ namespace {
 constexpr Nanos kPublishPeriod = 100'000'000;  // the loop samples the ESCs 10 times a second
 constexpr auto kTerminalPeriod = std::chrono::milliseconds(250);
 constexpr auto kLogPeriod = std::chrono::milliseconds(1000);
+constexpr auto kChangePeriod = std::chrono::milliseconds(125);  // looks for changes; the loop samples every 100 ms
 
 Nanos steady_now() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -69,11 +71,11 @@ void RunStatus::stop() {
   }
 }
 
+// Sampled always: what changes is logged whether the status line is shown or not.
 runtime::LoopService* RunStatus::wrap(runtime::LoopService* next) {
-  if (!enabled_) return next;
   publisher_ = std::make_unique<runtime::LineStatusPublisher>(network_, status_, kPublishPeriod, next);
   publisher_->sample();  // before the loop runs: the thread may read at once
-  if (terminal_) {
+  if (enabled_ && terminal_) {
     erase_sink_ = std::make_shared<EraseStatusSink>(drawn_);
     auto& sinks = spdlog::default_logger()->sinks();
     sinks.insert(sinks.begin(), erase_sink_);
@@ -83,14 +85,20 @@ runtime::LoopService* RunStatus::wrap(runtime::LoopService* next) {
 }
 
 void RunStatus::print_loop() {
-  const auto period = terminal_ ? kTerminalPeriod : kLogPeriod;
-  std::optional<runtime::StatusSample> before;
+  // Changes are looked for at the publisher's pace; the line is printed at its own.
+  const auto period = kChangePeriod;
+  const int ticks_per_line = static_cast<int>((terminal_ ? kTerminalPeriod : kLogPeriod) / kChangePeriod);
+  std::optional<runtime::StatusSample> before, last_change;
+  last_change = runtime::take_sample(status_, counters_, steady_now());
   auto next = std::chrono::steady_clock::now();
-  while (!stop_.load()) {
+  for (int tick = 1; !stop_.load(); ++tick) {
     next += period;
     while (!stop_.load() && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     if (stop_.load()) break;
     runtime::StatusSample now = runtime::take_sample(status_, counters_, steady_now());
+    for (const std::string& change : line_changes(*last_change, now, network_)) spdlog::info("{}", change);
+    last_change = now;
+    if (!enabled_ || tick % ticks_per_line != 0) continue;
     const std::string line = runtime::format_status_line(now, before ? &*before : nullptr);
     if (terminal_) {
       std::fprintf(stderr, "\r%s\033[K", line.c_str());

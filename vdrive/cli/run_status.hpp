@@ -5,6 +5,8 @@
 // line a second), `--no-status` turns it off. The loop's side is a runtime::LineStatusPublisher
 // (no lock, no allocation); a thread of its own formats and prints. On a terminal, a log line
 // erases the status line first (a sink put in front of spdlog's), and the status is redrawn below.
+// With or without the line, the thread logs what changes at info level (line_changes.hpp): AL
+// states, AL errors, drive alarms by name.
 #include <atomic>
 #include <memory>
 #include <thread>

@@ -7,6 +7,7 @@
 
 #include "ethercat/registers.hpp"
 #include "vdrive/network/network.hpp"
+#include "vdrive/od/object_store.hpp"
 
 namespace vdrive::runtime {
 namespace {
@@ -16,6 +17,7 @@ constexpr std::uint16_t kErrorCountersFirst = ecat::reg::kRxErrorCounter,
                         kErrorCountersLast = ecat::reg::kErrorCountersLast;
 constexpr std::uint16_t kAlErrorFlag = ecat::reg::kAlErrorFlag;
 constexpr std::size_t kSlavesShownOneByOne = 8;
+constexpr std::uint16_t kErrorCode = 0x603F;
 
 std::string slave_text(const SlaveStatus& s) {
   std::string text = al_state_name(s.al_status);
@@ -32,6 +34,13 @@ void LineStatusPublisher::sample() {
     s.al_status = esc.peek_u16(kAlStatus);
     s.al_status_code = esc.peek_u16(kAlStatusCode);
     for (std::uint16_t a = kErrorCountersFirst; a <= kErrorCountersLast; ++a) s.rx_errors += esc.peek(a);
+    if (network_.firmware(i).drive() != nullptr) {
+      od::ObjectStore& objects = network_.firmware(i).objects();
+      if (const od::EntryDesc* e = objects.dictionary().find(kErrorCode, 0); e != nullptr && e->value_bytes >= 2) {
+        const std::span<const std::uint8_t> raw = objects.raw(*e);
+        s.error_code = static_cast<std::uint16_t>(raw[0] | raw[1] << 8);
+      }
+    }
     status_.publish(i, s);
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
 // LineStatus: what a status line shows of a served line (per slave: AL status, AL status code,
-// the ESC's receive error counters), written by the event loop's thread and read by another
+// the ESC's receive error counters, a drive's 603Fh), written by the event loop's thread and read by another
 // (`vdrive run`'s status line). Fixed size, one 64-bit atomic per slave so each slave reads
 // consistently: no lock, no allocation on the loop. LineStatusPublisher is the writing side, a
 // LoopService that samples the ESCs a few times a second and passes poll() on to the service it
@@ -28,6 +28,7 @@ struct SlaveStatus {
   std::uint16_t al_status = 0;       // register 0x0130: state in bits 0-3, error flag bit 4
   std::uint16_t al_status_code = 0;  // register 0x0134
   std::uint32_t rx_errors = 0;       // sum of the error counters 0x0300-0x030C (invalid frames, RX, forwarded, processing unit)
+  std::uint16_t error_code = 0;      // 603Fh of a drive (0 for other slaves)
 };
 
 class LineStatus {
@@ -37,15 +38,18 @@ public:
   void publish(std::size_t i, const SlaveStatus& s) {
     packed_[i].store(std::uint64_t{s.al_status} | std::uint64_t{s.al_status_code} << 16 | std::uint64_t{s.rx_errors} << 32,
                      std::memory_order_relaxed);
+    error_codes_[i].store(s.error_code, std::memory_order_relaxed);
   }
   SlaveStatus slave(std::size_t i) const {
     const std::uint64_t v = packed_[i].load(std::memory_order_relaxed);
-    return {static_cast<std::uint16_t>(v), static_cast<std::uint16_t>(v >> 16), static_cast<std::uint32_t>(v >> 32)};
+    return {static_cast<std::uint16_t>(v), static_cast<std::uint16_t>(v >> 16), static_cast<std::uint32_t>(v >> 32),
+            error_codes_[i].load(std::memory_order_relaxed)};
   }
 
 private:
   std::size_t slaves_;
   std::array<std::atomic<std::uint64_t>, kMaxStatusSlaves> packed_{};
+  std::array<std::atomic<std::uint16_t>, kMaxStatusSlaves> error_codes_{};
 };
 
 // Reads the ESCs (side-effect-free peeks) every `period` on the loop's thread.

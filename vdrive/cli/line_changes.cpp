@@ -1,0 +1,49 @@
+#include "vdrive/cli/line_changes.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+#include "ethercat/registers.hpp"
+#include "master/al_state.hpp"
+#include "vdrive/network/network.hpp"
+
+namespace vdrive::cli {
+namespace {
+
+std::string alarm_text(const profile::ProductProfile& p, std::uint16_t error_code) {
+  for (const profile::AlarmSpec& a : p.alarms) {
+    if (a.error_code != error_code) continue;
+    const std::string& name = a.name_en.empty() ? a.name : a.name_en;
+    return fmt::format("alarm {} {} (603Fh {:04X}h)", a.code, name, error_code);
+  }
+  return fmt::format("alarm 603Fh {:04X}h", error_code);
+}
+
+}  // namespace
+
+std::vector<std::string> line_changes(const runtime::StatusSample& before, const runtime::StatusSample& now,
+                                      const network::Network& network) {
+  std::vector<std::string> lines;
+  const std::size_t n = std::min({before.slaves.size(), now.slaves.size(), network.size()});
+  for (std::size_t i = 0; i < n; ++i) {
+    const runtime::SlaveStatus& b = before.slaves[i];
+    const runtime::SlaveStatus& a = now.slaves[i];
+    const profile::ProductProfile& p = network.profile(i);
+    const std::string who = fmt::format("slave {} ({})", i + 1, p.id);
+    const bool was_error = (b.al_status & ecat::reg::kAlErrorFlag) != 0, is_error = (a.al_status & ecat::reg::kAlErrorFlag) != 0;
+    if ((a.al_status & 0x0F) != (b.al_status & 0x0F))
+      lines.push_back(fmt::format("{}: {} -> {}", who, runtime::al_state_name(b.al_status), runtime::al_state_name(a.al_status)));
+    if (is_error && (!was_error || a.al_status_code != b.al_status_code))
+      lines.push_back(fmt::format("{}: AL error 0x{:04X} {}, in {}", who, a.al_status_code,
+                                  master::al_status_code_text(a.al_status_code), runtime::al_state_name(a.al_status)));
+    else if (was_error && !is_error)
+      lines.push_back(fmt::format("{}: AL error acknowledged", who));
+    if (a.error_code != b.error_code)
+      lines.push_back(a.error_code != 0 ? fmt::format("{}: {}", who, alarm_text(p, a.error_code))
+                                        : fmt::format("{}: alarm cleared", who));
+  }
+  return lines;
+}
+
+}  // namespace vdrive::cli

@@ -1,0 +1,22 @@
+#pragma once
+// What changed on a served line between two status samples, as the lines `vdrive run` logs at
+// info level (docs/cli.md "What run logs"): AL state changes, AL errors with the ETG text of their
+// code, and drive alarms (603Fh) by the product's own name:
+//   slave 2 (ds5c1): Pre-Op -> Safe-Op
+//   slave 2 (ds5c1): AL error 0x001D Invalid output configuration, in Pre-Op
+//   slave 1 (a6b): alarm Err16.0 Overload (603Fh FF10h)
+//   slave 1 (a6b): alarm cleared
+// A change that comes and goes between two samples is not seen.
+#include <string>
+#include <vector>
+
+#include "vdrive/runtime/line_status.hpp"
+
+namespace vdrive::network { class Network; }
+
+namespace vdrive::cli {
+
+std::vector<std::string> line_changes(const runtime::StatusSample& before, const runtime::StatusSample& now,
+                                      const network::Network& network);
+
+}  // namespace vdrive::cli
