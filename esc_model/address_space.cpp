@@ -2,6 +2,7 @@
 //   0x0000-0x0FFF registers: per-byte write permission per side, then side effects
 //   0x0500-0x050F SII EEPROM interface, 0x0900-0x09FF DC unit: delegated as whole spans, so
 //                 multi-byte registers (e.g. 64-bit system time) are accessed atomically
+//   0x0F00-0x0F03 digital output data: a register, or a SyncManager's window where one covers it
 //   0x1000-ram_end process RAM, redirected through enabled SyncManagers
 //   above ram_end: not backed; reads give 0, writes are dropped (the access still counts)
 // Addresses wrap at 64 KiB like the ESC's 16-bit offset.
@@ -16,6 +17,8 @@ std::uint32_t Esc::Impl::region_end(std::uint16_t a) const {
   if (a < reg::kSiiEnd) return reg::kSiiEnd;
   if (a < reg::kDcFirst) return reg::kDcFirst;
   if (a < reg::kDcEnd) return reg::kDcEnd;
+  if (a < reg::kDigitalOutputData) return reg::kDigitalOutputData;
+  if (a < reg::kDigitalOutputDataEnd) return reg::kDigitalOutputDataEnd;
   if (a < reg::kRegisterEnd) return reg::kRegisterEnd;
   if (a < ram_end) return ram_end;
   return 0x10000;
@@ -67,6 +70,15 @@ bool Esc::Impl::write_bytes(std::uint16_t address, std::span<const std::uint8_t>
   return write_region(Side::Ecat, address, in, 0xFF);
 }
 
+// An access to the digital output data that an enabled SyncManager covers goes through it, as
+// process RAM does (region_end() keeps such an access within 0x0F00-0x0F03).
+bool Esc::Impl::in_sm_window(std::uint16_t a, std::uint32_t end) const {
+  if (a < reg::kDigitalOutputData || a >= reg::kDigitalOutputDataEnd) return false;
+  for (std::uint32_t at = a; at < end; ++at)
+    if (sm_covering(static_cast<std::uint16_t>(at)) >= 0) return true;
+  return false;
+}
+
 int Esc::Impl::sm_covering(std::uint16_t address) const {
   for (int n = 0; n < sm_count; ++n) {
     if (sms[static_cast<std::size_t>(n)].covers(address)) return n;
@@ -99,7 +111,7 @@ bool Esc::Impl::read_region(Side side, std::uint16_t a, std::span<std::uint8_t> 
     after_dc_read(a, end);
     return true;
   }
-  if (a < reg::kRegisterEnd) {
+  if (a < reg::kRegisterEnd && !in_sm_window(a, end)) {
     std::copy_n(mem.begin() + a, out.size(), out.begin());
     after_register_read(side, a, end);
     return true;
@@ -155,7 +167,7 @@ bool Esc::Impl::write_region(Side side, std::uint16_t a, std::span<const std::ui
     }
     return true;
   }
-  if (a < reg::kRegisterEnd) {
+  if (a < reg::kRegisterEnd && !in_sm_window(a, end)) {
     for (std::size_t i = 0; i < in.size(); ++i) {
       write_register_byte(side, static_cast<std::uint16_t>(a + i), in[i], mask);
     }

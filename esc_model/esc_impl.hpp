@@ -102,6 +102,7 @@ struct Esc::Impl final : PhysicalPort {
   void write_register_byte(Side side, std::uint16_t address, std::uint8_t value,
                            std::uint8_t mask);
   int sm_covering(std::uint16_t address) const;
+  bool in_sm_window(std::uint16_t a, std::uint32_t end) const;
   std::uint32_t run_end(std::uint16_t a, int n, std::uint32_t limit) const;
   std::span<std::uint8_t> ram() { return std::span<std::uint8_t>(mem).first(ram_end); }
 

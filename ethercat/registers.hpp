@@ -246,6 +246,12 @@ inline constexpr std::uint8_t kSync1Pending = 1u << 1;
 inline constexpr std::uint8_t kStartTimeImplausible = 1u << 2;
 }  // namespace dc_activation_status
 
+// ---- Digital I/O output data --------------------------------------------------------------
+// A digital output device's process-data SyncManager may sit on it (an EL2xxx's SM0 at 0F00h,
+// 3-buffered, one byte): the ESC then routes the master's writes through that SyncManager.
+inline constexpr Addr kDigitalOutputData = 0x0F00;
+inline constexpr Addr kDigitalOutputDataEnd = 0x0F04;
+
 // ---- User RAM ------------------------------------------------------------------------------
 inline constexpr Addr kUserRam = 0x0F80;
 inline constexpr Addr kRegisterEnd = 0x1000;         // process RAM starts here

@@ -236,3 +236,26 @@ TEST_F(BufferedTest, InputsWrittenByPdiReadByMaster) {
 
 }  // namespace
 }  // namespace vdrive::esc::test
+
+namespace vdrive::esc::test {
+namespace {
+
+// A digital output terminal's SM0 on the digital output data (0x0F00, one byte, 3-buffered,
+// ECAT writes, no AL event as on an EL2008): the master's writes go through the SyncManager and
+// the PDI reads the latest complete buffer.
+class DigitalOutputSm : public EscTest {};
+
+TEST_F(DigitalOutputSm, WritesToTheOutputRegisterGoThroughItsSyncManager) {
+  set_station();
+  ASSERT_EQ(fpwr(0x0800, {0x00, 0x0F, 0x01, 0x00, 0x44, 0x00, 0x01, 0x00}).wkc, 1);  // SM0: 0F00h, 1 byte, 3-buffer, write
+  pdi8(0x0806);
+  EXPECT_EQ(pdi8(0x0F00), 0x00) << "nothing written yet";
+  EXPECT_EQ(fpwr(0x0F00, {0xA5}).wkc, 1);
+  EXPECT_EQ(pdi8(0x0F00), 0xA5) << "the PDI reads the buffer the master completed";
+  EXPECT_EQ(fpwr(0x0F00, {0x5A}).wkc, 1);
+  EXPECT_EQ(fpwr(0x0F00, {0x3C}).wkc, 1);
+  EXPECT_EQ(pdi8(0x0F00), 0x3C) << "3-buffered: the newest complete buffer";
+}
+
+}  // namespace
+}  // namespace vdrive::esc::test

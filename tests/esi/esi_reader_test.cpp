@@ -293,9 +293,16 @@ TEST(EsiVendorFiles, APdoMappingItsOwnMappingObjectIsRefused) {
   EXPECT_NE(e.find("d.xml:12: <Entry>: PDO 1600h maps 1600h:01h, a PDO mapping or assignment object"), std::string::npos) << e;
 }
 
+// A digital output terminal's SM0 on the digital output data (0F00h) is served; anything else in
+// the register area is refused with the reason.
 TEST(EsiVendorFiles, ProcessDataInTheRegisterAreaIsRefusedWithTheReason) {
-  const std::string e = import_error(device("<Sm StartAddress=\"#x0F00\" ControlByte=\"#x44\" Enable=\"1\">Outputs</Sm>"));
-  EXPECT_NE(e.find("d.xml:10: <Sm>: Outputs at 0F00h, in the ESC's register area"), std::string::npos) << e;
+  const std::string inputs = import_error(device("<Sm StartAddress=\"#x0F00\" ControlByte=\"#x00\" Enable=\"1\">Inputs</Sm>"));
+  EXPECT_NE(inputs.find("d.xml:10: <Sm>: Inputs at 0F00h, 0 bytes, in the ESC's register area"), std::string::npos) << inputs;
+  const std::string wide =
+      import_error(device("<Sm StartAddress=\"#x0F00\" DefaultSize=\"2\" ControlByte=\"#x44\" Enable=\"1\">Outputs</Sm>"));
+  EXPECT_NE(wide.find("Outputs at 0F00h, 2 bytes, in the ESC's register area"), std::string::npos) << wide;
+  EXPECT_EQ(import_error(device("<Sm StartAddress=\"#x0F00\" DefaultSize=\"1\" ControlByte=\"#x44\" Enable=\"1\">Outputs</Sm>")),
+            "") << "a digital output terminal's SM0";
 }
 
 }  // namespace

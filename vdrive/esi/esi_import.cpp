@@ -311,8 +311,8 @@ void make_pdo_entries_mappable(std::vector<od::ObjectDesc>& objects, const EsiDe
 }
 
 // What a file says that no device can be: a PDO entry naming a PDO mapping or assignment object, a
-// process-data SyncManager in the ESC's register area (the ESC model has SyncManagers in process
-// RAM only: a digital output terminal's SM0 on the output register 0F00h is not modelled).
+// process-data SyncManager in the ESC's register area other than an output one on the digital
+// output data (0F00h-0F03h, a digital output terminal's SM0).
 void check_device(const EsiDevice& d) {
   for (const std::vector<EsiPdo>* list : {&d.rx_pdos, &d.tx_pdos})
     for (const EsiPdo& pdo : *list)
@@ -321,11 +321,16 @@ void check_device(const EsiDevice& d) {
           throw EsiError(fmt::format("{}:{}: <Entry>: PDO {:04X}h maps {:04X}h:{:02X}h, a PDO mapping or assignment "
                                      "object, not data; the file is inconsistent", d.file, e.line, pdo.index, e.index,
                                      e.subindex));
-  for (const EsiSyncManager& sm : d.sync_managers)
-    if ((sm.kind == "Outputs" || sm.kind == "Inputs") && sm.start < 0x1000)
-      throw EsiError(fmt::format("{}:{}: <Sm>: {} at {:04X}h, in the ESC's register area (the digital I/O registers): "
-                                 "vdrive's ESC has SyncManagers in process RAM (1000h up) only; not served",
-                                 d.file, sm.line, sm.kind, sm.start));
+  for (const EsiSyncManager& sm : d.sync_managers) {
+    if ((sm.kind != "Outputs" && sm.kind != "Inputs") || sm.start >= 0x1000) continue;
+    // 3-buffered: the ESC keeps three copies of the window.
+    const bool on_output_data = sm.kind == "Outputs" && sm.start >= 0x0F00 && sm.start + 3u * sm.default_size <= 0x0F04;
+    if (!on_output_data)
+      throw EsiError(fmt::format("{}:{}: <Sm>: {} at {:04X}h, {} bytes, in the ESC's register area: a process-data "
+                                 "SyncManager is in process RAM (1000h up), or for outputs on the digital output "
+                                 "data (0F00h-0F03h, three buffers included); not served",
+                                 d.file, sm.line, sm.kind, sm.start, sm.default_size));
+  }
 }
 
 }  // namespace

@@ -43,7 +43,10 @@ PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, bool out
   if (!ch.enabled()) return PdSmFault::Disabled;
   if (ch.length != mapped_bytes) return PdSmFault::Length;
   if (ch.start % 2 != 0) return PdSmFault::OddStart;
-  if (ch.start < reg::kRegisterEnd || ch.start + footprint(ch) > ram_end) return PdSmFault::Start;
+  // Process RAM, or (outputs) the digital output data, where a digital output device's SM sits.
+  const bool on_output_register = outputs && ch.start >= reg::kDigitalOutputData &&
+                                  ch.start + footprint(ch) <= reg::kDigitalOutputDataEnd;
+  if (!on_output_register && (ch.start < reg::kRegisterEnd || ch.start + footprint(ch) > ram_end)) return PdSmFault::Start;
   const std::uint8_t direction = outputs ? reg::sm::kDirectionEcatWrites : reg::sm::kDirectionEcatReads;
   if ((check_mode && (ch.control & reg::sm::kModeMask) != reg::sm::kModeBuffered) ||
       (ch.control & reg::sm::kDirectionMask) != direction) {

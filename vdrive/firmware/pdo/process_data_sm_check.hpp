@@ -26,7 +26,8 @@ enum class PdSmFault : std::uint8_t {
 std::string_view describe(PdSmFault fault);
 
 // `sm` carries outputs (master writes) or inputs (master reads); `sms` indexed by SM number;
-// process RAM is [0x1000, ram_end).
+// process RAM is [0x1000, ram_end); an output SM may also sit on the digital output data
+// (0x0F00-0x0F03, footprint included), as a digital output terminal's does.
 // With `check_mode` the control byte must select 3-buffer mode as well as the direction.
 PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, bool outputs, std::uint16_t mapped_bytes,
                                 std::uint32_t ram_end, bool check_mode = true);
