@@ -1,4 +1,3 @@
-#include <cstdio>
 #include "master/cia402_program.hpp"
 
 #include <algorithm>
@@ -172,15 +171,21 @@ bool SineProgram::done() const {
   return any;
 }
 
+// Why a drive failed, first cause first: it never got enabled, it faulted, nothing was measured,
+// or it left its window.
+std::string verdict(const DriveResult& r) {
+  if (r.ok()) return "ok";
+  if (!r.enabled) return "FAILED (never reached Operation enabled)";
+  if (r.faulted) return fmt::format("FAILED (faulted, 603Fh {:04X}h)", r.error_code);
+  if (r.samples == 0) return "FAILED (no sine cycle measured)";
+  return fmt::format("FAILED (following error {} beyond the window {})", r.max_following_error, r.following_window);
+}
+
 std::string describe(const DriveResult& r) {
-  char line[320];
-  std::snprintf(line, sizeof line,
-                "drive 0x%04X: %s, amplitude %.0f, max following error %lld (window 6065h = %u) over %llu cycles, "
-                "statusword 0x%04X, 603Fh 0x%04X%s%s",
-                r.station, r.ok() ? "ok" : "FAILED", r.amplitude, static_cast<long long>(r.max_following_error),
-                r.following_window, static_cast<unsigned long long>(r.samples), r.statusword, r.error_code,
-                r.note.empty() ? "" : ": ", r.note.c_str());
-  return line;
+  return fmt::format("drive 0x{:04X}: {}, amplitude {:.0f}, max following error {} (window 6065h = {}; position "
+                     "units of 6064h) over {} cycles, statusword 0x{:04X}, 603Fh 0x{:04X}{}{}",
+                     r.station, verdict(r), r.amplitude, r.max_following_error, r.following_window, r.samples,
+                     r.statusword, r.error_code, r.note.empty() ? "" : ": ", r.note);
 }
 
 }  // namespace vdrive::master

@@ -43,7 +43,9 @@ struct DriveResult {
 };
 
 // One line for a person: "drive 0x1001: ok, amplitude ..., max following error ... (window 6065h =
-// ...) over N cycles, statusword 0x..., 603Fh 0x...[: note]".
+// ...; position units of 6064h) over N cycles, statusword 0x..., 603Fh 0x...[: note]"; a failed
+// drive says why: "FAILED (never reached Operation enabled)", "FAILED (faulted, 603Fh FF10h)",
+// "FAILED (no sine cycle measured)", "FAILED (following error E beyond the window W)".
 std::string describe(const DriveResult& r);
 
 class SineProgram {

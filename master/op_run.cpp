@@ -105,7 +105,8 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
     return options.done && options.done();
   });
   result.stats = task.stats();
-  say(fmt::format("{} cycles in Op, {} wrong working counters, {} lost frames, worst lateness {} us",
+  say(fmt::format("{} cycles in Op, {} wrong working counters, {} lost frames, worst lateness {} us (the latest a "
+                  "cycle's frame left after its planned time)",
                   result.stats.cycles, result.stats.wrong_wkc, result.stats.lost_frames, result.stats.max_late / 1000));
   if (options.back_to_init) master.request_state(AlState::Init);
   return result;

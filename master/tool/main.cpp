@@ -216,6 +216,14 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
   }
   const auto result = vdrive::master::run_to_op(master, options, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
   for (const auto& note : result.notes) std::printf("note: %s\n", note.c_str());
+  // Every drive's verdict, whatever else went wrong: a failed run shows what each drive did.
+  bool drives_ok = true;
+  if (program) {
+    for (const auto& r : program->results()) {
+      std::printf("%s\n", vdrive::master::describe(r).c_str());
+      drives_ok = drives_ok && r.ok();
+    }
+  }
   if (!result.reached_op) {
     std::fprintf(stderr, "vdrive-master: %s\n", result.error.c_str());
     return 2;
@@ -229,15 +237,7 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
                  static_cast<unsigned long long>(result.stats.wrong_wkc), static_cast<unsigned long long>(result.stats.cycles));
     return 2;
   }
-  if (program) {
-    bool all_ok = true;
-    for (const auto& r : program->results()) {
-      std::printf("%s\n", vdrive::master::describe(r).c_str());
-      all_ok = all_ok && r.ok();
-    }
-    if (!all_ok) return 2;
-  }
-  return 0;
+  return drives_ok ? 0 : 2;
 }
 
 }  // namespace

@@ -76,3 +76,32 @@ TEST(Cia402Sine, RevolutionsScaleEachDrivesOwnRevolution) {
 
 }  // namespace
 }  // namespace vdrive::master
+
+namespace vdrive::master {
+namespace {
+
+// A drive's line says why it failed, first cause first, with the units of its numbers.
+TEST(DriveResultLine, AFailedDriveSaysWhy) {
+  DriveResult r;
+  r.station = 0x1002;
+  r.following_window = 100000;
+  r.amplitude = 131072;
+  EXPECT_EQ(describe(r).rfind("drive 0x1002: FAILED (never reached Operation enabled), amplitude 131072, ", 0), 0u)
+      << describe(r);
+  r.enabled = true;
+  r.faulted = true;
+  r.error_code = 0xFF10;
+  EXPECT_NE(describe(r).find(": FAILED (faulted, 603Fh FF10h), "), std::string::npos) << describe(r);
+  r.faulted = false;
+  EXPECT_NE(describe(r).find(": FAILED (no sine cycle measured), "), std::string::npos) << describe(r);
+  r.samples = 2000;
+  r.max_following_error = 100001;
+  EXPECT_NE(describe(r).find(": FAILED (following error 100001 beyond the window 100000), "), std::string::npos)
+      << describe(r);
+  r.max_following_error = 5123;
+  EXPECT_EQ(describe(r), "drive 0x1002: ok, amplitude 131072, max following error 5123 (window 6065h = 100000; "
+                         "position units of 6064h) over 2000 cycles, statusword 0x0000, 603Fh 0xFF10");
+}
+
+}  // namespace
+}  // namespace vdrive::master
