@@ -30,7 +30,7 @@ sleep 0.6
 out=$("$VDRIVE" fault list --control "$CONTROL") || fail "fault list failed: $out"
 echo "$out"
 echo "$out" | grep -q "encoder_error" || fail "the armed fault is not active"
-grep -q "armed_fault.yaml:5: armed fault 1 injected" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "the armed fault is not logged with its line"; }
+grep -q "armed_fault.yaml:5: armed fault 1 (encoder_error slave 1)" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "the armed fault is not logged with its line"; }
 out=$("$MASTER" sdo-read --iface "$M_IF" --slave 0 --index 0x603F --type u16) || fail "sdo-read 603Fh failed: $out"
 echo "$out"
 code=$(echo "$out" | sed -n 's/.*(\([0-9]*\))$/\1/p')   # "603F:00 = 0xFF15 (65301)"

@@ -67,8 +67,7 @@ void FaultService::inject_armed(Nanos now) {
     r.fault = a.spec;
     const ControlReply reply = handle(r, now);
     if (!reply.ok()) spdlog::warn("{}: armed fault not injected: {}", a.origin, reply.error);
-    else if (reply.id == 0) spdlog::info("{}: armed fault applied: {}", a.origin, fault::describe(a.spec));
-    else spdlog::info("{}: armed fault {} injected: {}", a.origin, reply.id, fault::describe(a.spec));
+    else spdlog::info("{}: armed fault {} ({})", a.origin, reply.id, fault::describe(a.spec));
   }
 }
 
@@ -82,14 +81,18 @@ ControlReply FaultService::handle(const ControlRequest& r, Nanos now) {
       case ControlRequest::Op::inject:
         reply.id = injector_.inject(r.fault, now);
         if (fault::info(r.fault.kind).one_shot) reply.id = 0;
+        if (reply.id == 0) spdlog::info("one-shot fault applied: {}", fault::describe(r.fault));
+        else spdlog::info("fault {} injected: {}", reply.id, fault::describe(r.fault));
         break;
       case ControlRequest::Op::clear:
         if (!injector_.clear(r.id, now))
           return error_reply(ControlReply::Status::bad_request, fmt::format("no active fault {}", r.id));
+        spdlog::info("fault {} cleared", r.id);
         break;
       case ControlRequest::Op::clear_all:
         reply.cleared = static_cast<int>(injector_.active().size());
         injector_.clear_all(now);
+        spdlog::info("all faults cleared ({})", reply.cleared);
         break;
       case ControlRequest::Op::signal_get:
       case ControlRequest::Op::signal_set:
