@@ -156,6 +156,11 @@ void Esc::set_faults(const EscFaults& faults) {
 
 const EscFaults& Esc::faults() const { return impl_->faults; }
 
+std::optional<std::uint16_t> Esc::pdi_eeprom_word(std::size_t word_address) const {
+  if (!impl_->sii.acknowledges()) return std::nullopt;
+  return impl_->sii.word(word_address);
+}
+
 void Esc::set_links(const PortLinks& links) { impl_->links_changed(links); }
 
 bool Esc::port_forwards(int port) const {

@@ -20,6 +20,7 @@
 // are not modelled.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <memory>
 #include <span>
 
@@ -70,6 +71,11 @@ public:
   void pdi_write(std::uint16_t address, std::span<const std::uint8_t> in);
   // AL Event Request (0x0220) masked by AL Event Mask (0x0204): non-zero means "IRQ asserted".
   std::uint32_t pdi_irq() const;
+  // The drive's microcontroller reading the SII EEPROM chip itself, as a firmware that checks its
+  // SII at start-up does (A6B Err85.3): the word as stored now, EEPROM writes included, 0xFFFF
+  // beyond the image; nothing when the EEPROM does not acknowledge (fault sii_error). Independent
+  // of the 0x0500 ownership handshake and of 0x0502, which belong to the ESC's own interface.
+  std::optional<std::uint16_t> pdi_eeprom_word(std::size_t word_address) const;
 
   // ---- time ---------------------------------------------------------------------------------
   // Called by the scheduler so the ESC can run time-based behaviour (watchdogs, SYNC0/1).

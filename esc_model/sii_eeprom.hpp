@@ -59,6 +59,7 @@ public:
   // reset()) also reports the device information as not loaded (bit12) and loads nothing.
   // Kept across reset().
   void set_no_acknowledge(bool fail) { no_acknowledge_ = fail; }
+  bool acknowledges() const { return !no_acknowledge_; }
 
 private:
   enum Command : std::uint8_t { kNone = 0, kRead = 1, kWrite = 2, kReload = 4 };

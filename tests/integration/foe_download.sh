@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Integration: FoE firmware download to the DS1000A-EC with the project master, the way
-# a field engineer updates the drive (docs/foe.md). `vdrive run --drive ds1000a` inside a network
+# a field engineer updates the drive (docs/foe.md). `vdrive run --drive ds1000a --foe-strict` (the
+# ETG SSC's name check and vdrive's image format, as a master's error handling is tested) inside a network
 # namespace on one end of a veth pair, `vdrive-master foe-write` on the other:
 #   - 100Ah reads the factory "V1.00/1.00" on a fresh drive (its flash: $WORK/state);
 #   - a valid image "ECATFW__DS1000A-EC_V1.10.efw" (5,048 bytes: 43 DATA packets of 116 bytes and
@@ -48,7 +49,8 @@ for name, data in files.items():
     open(os.path.join(sys.argv[1], name), "wb").write(data)
 PY
 
-start_line --drive ds1000a
+# --foe-strict: the ETG SSC's name check and vdrive's image format (the default takes any file).
+start_line --drive ds1000a --foe-strict
 start_capture "$WORK/foe.pcapng"
 wait_for_line
 

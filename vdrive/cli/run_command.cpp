@@ -52,6 +52,7 @@ struct RunOptions {
   Nanos hop_delay = 500;
   std::string profile_dir;
   bool no_qdisc_bypass = false;
+  bool foe_strict = false;          // --foe-strict: FoE takes only ECATFW__ files in vdrive's image format
   int rt_priority = 0;  // 0: normal scheduling
   long busy_poll_us = 0;  // raw socket: spin before sleeping (RawSocketLink::Options::busy_poll)
   bool no_rx_ring = false;  // raw socket: recvfrom instead of the PACKET_RX_RING (RawSocketLink::Options::rx_ring)
@@ -241,6 +242,7 @@ void run(RunOptions o) {
   std::unique_ptr<network::Network> network;
   try {
     network::NetworkOptions options{o.hop_delay, o.profile_dir};
+    options.foe_strict_firmware_check = o.foe_strict;
     options.plants = load_plants(o);
     if (!o.network_file.empty()) apply_network_file(o, options);
     network = std::make_unique<network::Network>(o.drives, clock, options);
@@ -335,6 +337,9 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::Range(Nanos{0}, Nanos{1'000'000'000}));
   cmd->add_option("--profile-dir", o->profile_dir,
                   "Load profiles from DIR/<id>/profile.yaml instead of the built-in ones");
+  cmd->add_flag("--foe-strict", o->foe_strict,
+               "FoE firmware download takes only a file named ECATFW__... in vdrive's image format, password 0 "
+               "(the ETG SSC's checks; default: any file in Boot), docs/foe.md");
   CLI::Option* rt = cmd->add_option("--rt-priority", o->rt_priority,
                   "Serve with SCHED_FIFO priority 1..99 and locked memory (default: normal)")
       ->check(CLI::Range(1, 99));

@@ -8,6 +8,7 @@ void AlStateMachine::reset() {
   error_code_ = 0;
   id_loaded_ = false;
   device_id_ = 0;
+  latched_ = false;
 }
 
 void AlStateMachine::on_al_control(ecat::AlControl control, std::uint16_t device_id,
@@ -18,6 +19,9 @@ void AlStateMachine::on_al_control(ecat::AlControl control, std::uint16_t device
     id_loaded_ = control.id_request;
     device_id_ = control.id_request ? device_id : 0;
   }
+
+  // A non-clearable error: the slave stays where it fell, flag and code stay, whatever is asked.
+  if (latched_) return;
 
   const bool wants_init = control.requested == static_cast<std::uint8_t>(ecat::AlState::Init);
   if (error_) {
@@ -95,9 +99,11 @@ void AlStateMachine::refuse(std::uint16_t code, TransitionHooks& hooks) {
   if (state_ == ecat::AlState::Op) go(ecat::AlState::SafeOp, hooks);
 }
 
-void AlStateMachine::raise(ecat::AlState state, std::uint16_t code, TransitionHooks& hooks) {
+void AlStateMachine::raise(ecat::AlState state, std::uint16_t code, TransitionHooks& hooks, bool clearable) {
+  if (latched_) return;   // the first non-clearable error keeps its code
   error_ = true;
   error_code_ = code;
+  latched_ = !clearable;
   go(state, hooks);
 }
 

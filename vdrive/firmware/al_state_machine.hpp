@@ -62,11 +62,14 @@ public:
 
   // A failure the slave detects on its own (e.g. mailbox SMs changed while running): fall to
   // `state` with the error flag and `code`, as the product's manual prescribes.
-  void raise(ecat::AlState state, std::uint16_t code, TransitionHooks& hooks);
+  // `clearable` false: the error stays until power-on (reset()); the master's acknowledge and every
+  // request are ignored while it is pending (A6B Err85.3, "不可清零", L33756).
+  void raise(ecat::AlState state, std::uint16_t code, TransitionHooks& hooks, bool clearable = true);
 
   ecat::AlState state() const { return state_; }
   bool error() const { return error_; }
   std::uint16_t error_code() const { return error_code_; }
+  bool error_clearable() const { return !latched_; }
   bool id_loaded() const { return id_loaded_; }
 
   // Values for AL Status (0x0130) and AL Status Code (0x0134). While the error flag is set the
@@ -93,6 +96,7 @@ private:
   std::uint16_t error_code_ = 0;
   bool id_loaded_ = false;
   std::uint16_t device_id_ = 0;
+  bool latched_ = false;   // a non-clearable error is pending
 };
 
 }  // namespace vdrive::firmware

@@ -6,6 +6,7 @@
 // No allocation, no locks: safe on the frame path.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "esc_model/esc.hpp"
@@ -82,6 +83,8 @@ public:
   SmChannel read_sm_window(int n) { return read_sm_bytes(n, 6); }
 
   std::uint32_t irq() const { return esc_.pdi_irq(); }
+  // The SII EEPROM chip read by the microcontroller itself (esc::Esc::pdi_eeprom_word).
+  std::optional<std::uint16_t> eeprom_word(std::size_t word_address) const { return esc_.pdi_eeprom_word(word_address); }
 
 private:
   SmChannel read_sm_bytes(int n, std::size_t count) {

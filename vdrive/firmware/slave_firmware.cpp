@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 #include <memory>
 
@@ -19,6 +20,7 @@
 #include "vdrive/firmware/sync/sync_module.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/od/object_store.hpp"
+#include "ethercat/sii.hpp"
 
 namespace vdrive::firmware {
 
@@ -104,10 +106,43 @@ struct SlaveFirmware::Impl final : TransitionHooks {
     esm.reset();
     mailbox_running = false;
     pdi.write_u32(reg::kAlEventMask, serviced_events());
+    // A drive that checks its SII in every state reads it at start-up (A6B Err85.3, L33734-L33766).
+    if (profile.sii_check.enabled && profile.sii_check.every_state && !sii_ok(true)) raise_sii_error();
     publish();
   }
 
+  // ---- SII EEPROM check (profile.sii_check) --------------------------------------------------
+  // The ESC's EEPROM status (0x0502) shows none of the product's error bits, and, with `identity`,
+  // the SII's vendor ID, product code and revision (words 8-13) are 1018h:01-03.
+  bool sii_ok(bool with_identity) {
+    const profile::SiiCheck& c = profile.sii_check;
+    if ((pdi.read_u16(reg::kSiiControlStatus) & c.error_bits) != 0) return false;
+    if (!with_identity || !c.identity) return true;
+    const od::Dictionary& d = objects.dictionary();
+    constexpr std::uint16_t kWords[] = {ecat::sii::kWordVendorId, ecat::sii::kWordProductCode, ecat::sii::kWordRevision};
+    for (std::uint8_t sub = 1; sub <= 3; ++sub) {
+      const std::uint16_t word = kWords[sub - 1];
+      const std::optional<std::uint16_t> low = pdi.eeprom_word(word), high = pdi.eeprom_word(word + 1u);
+      if (!low || !high) return false;   // the EEPROM cannot be read: "SII 的读出不正确"
+      const od::EntryDesc* e = d.find(0x1018, sub);
+      if (e == nullptr) continue;
+      const std::uint64_t object = ecat::get_le(std::as_const(objects).raw(*e));
+      if (object != (static_cast<std::uint32_t>(*high) << 16 | *low)) return false;
+    }
+    return true;
+  }
+  void raise_sii_error() {
+    esm.raise(ecat::AlState::Init, codes.eeprom_error, *this, profile.sii_check.clearable);
+    publish();
+  }
+  // In every state: the error bits whenever the firmware runs (once raised, nothing more to see).
+  void watch_sii() {
+    if (!profile.sii_check.every_state || (esm.error() && !esm.error_clearable())) return;
+    if (!sii_ok(false)) raise_sii_error();
+  }
+
   void on_irq(Nanos now) {
+    watch_sii();
     const std::uint32_t events = pdi.read_u32(reg::kAlEventRequest);
     for (auto& m : modules) {
       m->on_events(events, now);
@@ -155,6 +190,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   }
 
   void tick(Nanos now) {
+    watch_sii();
     for (auto& m : modules) {
       if (m->next_deadline() <= now) m->tick(now);
       apply_fault(*m);
@@ -175,6 +211,9 @@ struct SlaveFirmware::Impl final : TransitionHooks {
 
   // ---- TransitionHooks ----------------------------------------------------------------------
   CheckResult check_init_to_preop() override {
+    // ETG slave stack code: the EEPROM was not loaded -> 0x0051, the slave stays in Init.
+    if (profile.sii_check.enabled && !profile.sii_check.every_state && !sii_ok(false))
+      return {codes.eeprom_error, ecat::AlState::Init};
     if (!profile.has_mailbox()) return CheckResult::pass();  // nothing to check (simple I/O)
     if (check_mailbox_sms(read_sms(), rules) != MailboxSmFault::Ok)
       return {codes.invalid_mailbox_config, ecat::AlState::Init};

@@ -68,6 +68,7 @@ Network::Network(std::span<const std::string> product_ids, const Clock& clock,
       const DcModel& dc = options.dc_models[slaves_.size()];
       slave->esc->set_dc_model(dc.drift_ppm, dc.start_offset);
     }
+    if (options.foe_strict_firmware_check) slave->profile.foe_strict_firmware_check = true;
     firmware_options.profile_dir = options.profile_dir;
     if (slaves_.size() < options.plants.size()) firmware_options.plant = options.plants[slaves_.size()];
     slave->firmware = std::make_unique<firmware::SlaveFirmware>(slave->profile, *slave->esc, firmware_options);

@@ -62,6 +62,9 @@ struct NetworkOptions {
   // Where each slave's port 0 is cabled (topology.hpp), per slave in the order given; empty: the
   // line, slave i's port 1 to slave i+1.
   Topology topology = {};
+  // FoE firmware download with the ETG SSC's name/password checks and vdrive's image format on
+  // every slave with FoE (ProductProfile::foe_strict_firmware_check; `vdrive run --foe-strict`).
+  bool foe_strict_firmware_check = false;
 };
 
 class Network {

@@ -94,4 +94,21 @@ struct AlStatusCodes {
   std::uint16_t eeprom_error = ecat::al_status_code::kEepromError;  // SII EEPROM/identity mismatch
 };
 
+// When the firmware checks its SII EEPROM and reports AL status code `eeprom_error` (profile.yaml
+// `sii_check`; absent: never). The ESC's EEPROM status 0x0502 is read over the PDI; the identity
+// words are read from the EEPROM chip as the drive's microcontroller reads them at start-up.
+struct SiiCheck {
+  bool enabled = false;
+  // 0x0502 bits that count as an EEPROM error (bit 11 checksum, 12 device information not loaded,
+  // 13 acknowledge/command error, 14 write enable error).
+  std::uint16_t error_bits = 0;
+  // At power-on: SII words 8-13 (vendor, product code, revision) against 1018h:01-03.
+  bool identity = false;
+  // The error bits in every state, whenever the firmware runs (A6B Err85.3 "全部 ESM"); false: at
+  // Init->PreOp only (ETG slave stack code: EEPROM not loaded -> 0x0051, the slave stays in Init).
+  bool every_state = false;
+  // false: the error cannot be acknowledged; only a power cycle clears it (A6B: 不可清零).
+  bool clearable = true;
+};
+
 }  // namespace vdrive::profile

@@ -34,10 +34,16 @@ struct ProductProfile {
   // and sets AL status bit5. A6B and DS1000A-EC support it, DS5C1 does not.
   bool explicit_device_id = false;
   AlStatusCodes al_codes;
+  SiiCheck sii_check;                          // profile.yaml `sii_check` (absent: no check)
   // SII General category: CoE details (bit0 SDO, 1 SDO info, 2 PDO assign, 3 PDO config,
   // 4 startup upload, 5 complete access), FoE details, ports.
   std::uint8_t coe_details = 0x0F;
   std::uint8_t foe_details = 0;
+  // FoE firmware download: true = only a file named ECATFW__... holding a valid vdrive image
+  // (firmware_image.hpp) is taken, with password 0 (the ETG SSC's checks, for scenarios that test
+  // a master's error handling); false = any file name, password and content in Boot (profile.yaml
+  // `foe_strict_firmware_check`, default false: the manuals give neither, docs/foe.md).
+  bool foe_strict_firmware_check = false;
   // SDO abort for a complete-access request when coe_details bit5 is clear (A6B 06010000h: its abort
   // table has no 06010004h; ETG.1000.6 06010004h otherwise).
   std::uint32_t complete_access_abort = 0x06010004;

@@ -170,6 +170,18 @@ AlStatusCodes read_al_codes(YamlMapReader m) {
   return c;
 }
 
+SiiCheck read_sii_check(YamlMapReader m) {
+  SiiCheck c;
+  c.enabled = true;
+  c.error_bits = m.u16("error_bits");
+  if ((c.error_bits & ~0x7800u) != 0) m.fail("error_bits", "expected 0x0502 error bits 11-14 only (mask 0x7800)");
+  c.identity = m.boolean("identity");
+  c.every_state = m.boolean("every_state");
+  c.clearable = m.boolean("clearable");
+  m.finish();
+  return c;
+}
+
 PdoEntrySpec read_pdo_entry(YamlMapReader m) {
   PdoEntrySpec e;
   e.index = m.u16("index");
@@ -234,11 +246,13 @@ ProductProfile parse_profile(std::string_view id, const std::string& text, const
     root.fail("has_bootstrap", "is true but mailbox has no boot_* mailbox");
   p.explicit_device_id = root.boolean("explicit_device_id");
   p.al_codes = read_al_codes(root.map("al_codes"));
+  if (root.has("sii_check")) p.sii_check = read_sii_check(root.map("sii_check"));
   p.coe_details = root.u8("coe_details");
   p.complete_access_abort = root.u32("complete_access_abort");
   if (p.complete_access_abort < 0x05000000 || p.complete_access_abort > 0x08FFFFFF)
     root.fail("complete_access_abort", "expected an SDO abort code (0x05xxxxxx-0x08xxxxxx)");
   p.foe_details = root.u8("foe_details");
+  if (root.has("foe_strict_firmware_check")) p.foe_strict_firmware_check = root.boolean("foe_strict_firmware_check");
   p.rx_pdos = read_pdos(root, "rx_pdos", 0x1600);
   p.tx_pdos = read_pdos(root, "tx_pdos", 0x1A00);
   p.sync = read_sync(root.map("sync"));

@@ -11,6 +11,7 @@
 
 #include "tests/firmware/coe_test_client.hpp"
 #include "tests/firmware/mailbox_test_bench.hpp"
+#include "vdrive/firmware/coe/parameter_store.hpp"
 #include "vdrive/firmware/foe/firmware_image.hpp"
 #include "tests/support/allocation_counter.hpp"
 
@@ -44,6 +45,13 @@ FoeReply foe_reply(const std::optional<std::vector<std::uint8_t>>& r) {
 }
 
 profile::ProductProfile ds1000a() { return profile::load_profile("ds1000a"); }
+// With the ETG SSC's checks (ECATFW__ name, password 0) and vdrive's image format: the option
+// (`foe_strict_firmware_check`, `vdrive run --foe-strict`) for testing a master's error handling.
+profile::ProductProfile ds1000a_strict() {
+  profile::ProductProfile p = ds1000a();
+  p.foe_strict_firmware_check = true;
+  return p;
+}
 
 // Init -> Boot with the SII's bootstrap mailbox (128 bytes at 1000h/1080h, profile.yaml).
 void to_boot(Bench& b) {
@@ -195,8 +203,8 @@ TEST(FoeDownload, FileOfExactly256KiBIsTaken) {
   EXPECT_EQ(version_object(b), "V1.30/1.00");
 }
 
-TEST(FoeDownload, OtherFileNameIs8009InBootAnd8002Outside) {
-  Bench b(ds1000a());
+TEST(FoeDownload, StrictOtherFileNameIs8009InBootAnd8002Outside) {
+  Bench b(ds1000a_strict());
   to_boot(b);
   const FoeReply in_boot = foe_reply(b.exchange(kFoE, foe(kWrq, 0, text("DS1000A-EC_V1.10.efw"))));
   EXPECT_EQ(in_boot.op, kErr);
@@ -208,12 +216,55 @@ TEST(FoeDownload, OtherFileNameIs8009InBootAnd8002Outside) {
   EXPECT_EQ(in_preop.field, 0x8002u) << "access denied: the drive keeps no other files";
 }
 
-TEST(FoeDownload, PasswordOtherThanZeroIs800A) {
-  Bench b(ds1000a());
+TEST(FoeDownload, StrictPasswordOtherThanZeroIs800A) {
+  Bench b(ds1000a_strict());
   to_boot(b);
   const FoeReply r = foe_reply(b.exchange(kFoE, foe(kWrq, 0x12345678, text(kName))));
   EXPECT_EQ(r.op, kErr);
   EXPECT_EQ(r.field, 0x800Au) << "no rights";
+}
+
+// The manual names no file, password or format (L746-L752): by default the drive takes whatever a
+// master sends in Boot, kept as given; its size and CRC-32 are reported (last_download()).
+TEST(FoeDownload, AnyFileIsTakenInBootByDefault) {
+  TempDir state;
+  Bench b(ds1000a(), {}, state.path);
+  to_boot(b);
+  const FoeReply wrq = foe_reply(b.exchange(kFoE, foe(kWrq, 0x12345678, text("fw.bin"))));
+  ASSERT_EQ(wrq.op, kAck) << "any name and password";
+  std::vector<std::uint8_t> file(64 * 1024);
+  for (std::size_t i = 0; i < file.size(); ++i) file[i] = static_cast<std::uint8_t>(i * 13 + i / 256);
+  const FoeReply last = send_file(b, file);
+  EXPECT_EQ(last.op, kAck);
+  EXPECT_EQ(last.field, file.size() / 116 + 1) << "564 packets of 116 bytes and one of 112";
+  ASSERT_NE(b.module.foe(), nullptr);
+  EXPECT_EQ(b.module.foe()->last_download().bytes, file.size());
+  EXPECT_EQ(b.module.foe()->last_download().crc32, coe::crc32(file.data(), file.size()));
+  const std::string stored = state.path + "/ds1000a-00000000.firmware";
+  ASSERT_TRUE(std::filesystem::exists(stored));
+  EXPECT_EQ(std::filesystem::file_size(stored), file.size()) << "the image as given";
+  b.request_state(ecat::AlState::Init);
+  EXPECT_EQ(version_object(b), "V1.00/1.00") << "a foreign image's version is unknown: the factory text";
+}
+
+TEST(FoeDownload, StrictRefusesTheSameFile) {
+  Bench b(ds1000a_strict());
+  to_boot(b);
+  const FoeReply r = foe_reply(b.exchange(kFoE, foe(kWrq, 0, text("fw.bin"))));
+  EXPECT_EQ(r.op, kErr);
+  EXPECT_EQ(r.field, 0x8009u) << "SSC: not a file for Bootstrap";
+  ASSERT_EQ(foe_reply(b.exchange(kFoE, foe(kWrq, 0, text(kName)))).op, kAck);
+  const FoeReply content = send_file(b, std::vector<std::uint8_t>(64 * 1024, 0x5A));
+  EXPECT_EQ(content.op, kErr);
+  EXPECT_EQ(content.field, 0x800Du) << "not a vdrive image";
+}
+
+TEST(FoeDownload, AnyNameOutsideBootIs8008ByDefault) {
+  Bench b(ds1000a());
+  b.to_preop();
+  const FoeReply r = foe_reply(b.exchange(kFoE, foe(kWrq, 0, text("fw.bin"))));
+  EXPECT_EQ(r.op, kErr);
+  EXPECT_EQ(r.field, 0x8008u) << "firmware download in Boot only";
 }
 
 TEST(FoeDownload, FirmwareOutsideBootIs8008BootstrapOnly) {
@@ -245,7 +296,7 @@ TEST(FoeDownload, NoFoeInInit) {
   EXPECT_FALSE(b.receive().has_value());
 }
 
-TEST(FoeDownload, ForeignOrDamagedImageIsRefusedAndTheOldVersionStays) {
+TEST(FoeDownload, StrictForeignOrDamagedImageIsRefusedAndTheOldVersionStays) {
   struct Case {
     std::vector<std::uint8_t> file;
     std::uint32_t code;
@@ -262,7 +313,7 @@ TEST(FoeDownload, ForeignOrDamagedImageIsRefusedAndTheOldVersionStays) {
       {cut, 0x800C},                                           // shorter than its length field
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    Bench b(ds1000a());
+    Bench b(ds1000a_strict());
     to_boot(b);
     ASSERT_EQ(foe_reply(b.exchange(kFoE, foe(kWrq, 0, text(kName)))).op, kAck);
     const FoeReply r = send_file(b, cases[i].file);

@@ -341,6 +341,28 @@ TEST(SyncModule, Ds1000aCountsMissedEventsWithoutLosingSync) {
   EXPECT_EQ(d.object(0x1C32, 0x20), 0u);
 }
 
+// E-807 (L7119-L7123) names no threshold object; the profile's fixed threshold is 15 consecutive
+// misses (docs/products.md errata). Before: threshold 0, E-807 never fired.
+TEST(SyncModule, Ds5c1LostSync0IsE807After15Misses) {
+  Drive d("ds5c1");
+  d.sdo_write(0x1C32, 0x01, 2);
+  d.sdo_write(0x1C33, 0x01, 2);
+  d.sdo_write(0x1C32, 0x02, 1000000);
+  d.program_sync0(1000000);
+  ASSERT_TRUE(d.request_safeop().ok());
+  d.enter(ecat::AlState::SafeOp, ecat::AlState::Op);
+  d.run_until(d.now() + 40 * kMs);
+  ASSERT_TRUE(d.module().locked());
+  d.write(0x0981, {0x00});                        // the master stops SYNC0
+  d.run_until(d.now() + 14 * kMs);                // 14 misses (due from 1.5 ms after the last pulse)
+  EXPECT_TRUE(d.faults.empty());
+  d.run_until(d.now() + 2 * kMs);
+  ASSERT_EQ(d.faults.size(), 1u);
+  EXPECT_EQ(d.faults[0].code, 0x002C);            // E-807 (L7119, L7123)
+  EXPECT_EQ(d.faults[0].state, ecat::AlState::SafeOp);
+  EXPECT_EQ(d.object(0x1C32, 0x20), 1u);          // Sync error (L5695)
+}
+
 TEST(SyncModule, Ds5c1CyclePhaseJumpSetsSyncErrorFlag) {
   Drive d("ds5c1");
   d.sdo_write(0x1C32, 0x01, 2);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "vdrive/firmware/coe/parameter_store.hpp"
 #include "vdrive/od/object_store.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
@@ -34,7 +35,8 @@ FoeServer::FoeServer(FirmwareContext& context, const FoeOptions& options)
       programming_time_(options.programming_time),
       version_entry_(context.objects.dictionary().find(kSoftwareVersion, 0)),
       factory_version_(context.profile.identity.software_version),
-      buffer_(options.max_file_bytes) {
+      buffer_(options.max_file_bytes),
+      strict_(context.profile.foe_strict_firmware_check) {
   running_length_ = std::min(factory_version_.size(), running_.size());
   std::copy_n(factory_version_.begin(), running_length_, running_.begin());
 }
@@ -64,6 +66,14 @@ mailbox::Outcome FoeServer::write_request(std::span<const std::uint8_t> request,
   phase_ = Phase::Idle;
   received_ = 0;
   const bool boot = context_.esm.state() == ecat::AlState::Boot;
+  if (!strict_) {
+    // The manual names no file, password or format (L746-L752): whatever the master sends in
+    // Boot is the firmware.
+    if (!boot) return error(reply, ErrorCode::BootstrapOnly);
+    phase_ = Phase::Writing;
+    packet_ = 0;
+    return ack(reply, 0);
+  }
   const bool firmware = file_name(request).starts_with(kFirmwareNamePrefix);
   if (!firmware) return error(reply, boot ? ErrorCode::NotBootstrap : ErrorCode::AccessDenied);
   if (!boot) return error(reply, ErrorCode::BootstrapOnly);
@@ -98,10 +108,17 @@ mailbox::Outcome FoeServer::data(std::span<const std::uint8_t> request, std::spa
 mailbox::Outcome FoeServer::last_packet(std::span<std::uint8_t> reply, Nanos now) {
   std::array<char, kImageFieldSize> version{};
   std::size_t length = 0;
+  const std::span<const std::uint8_t> file(buffer_.data(), received_);
   const ImageCheck check =
-      check_image(std::span<const std::uint8_t>(buffer_.data(), received_), context_.profile.identity.device_name,
-                  factory_version_, version, length);
-  if (check != ImageCheck::Ok) return error(reply, error_for(check));
+      check_image(file, context_.profile.identity.device_name, factory_version_, version, length);
+  if (check != ImageCheck::Ok) {
+    if (strict_) return error(reply, error_for(check));
+    // Another format (the vendor's own file): kept as given. Its version is unknown, so after the
+    // restart 100Ah shows the factory text, as it would after a power-on with this image.
+    length = std::min(factory_version_.size(), version.size());
+    std::copy_n(factory_version_.begin(), length, version.begin());
+  }
+  last_download_ = {received_, coe::crc32(file.data(), file.size())};
   pending_ = version;
   pending_length_ = length;
   program_image();

@@ -4,15 +4,18 @@
 // L746-L752). The manual leaves file name, password and Boot-state rules to the master, so the
 // server follows the ETG defaults of the ETG slave stack code (SSC foeappl.c), see docs/foe.md:
 //
-//  - Write request (WRQ): a file whose name starts with "ECATFW__" is firmware. It is accepted in
-//    Boot only (elsewhere 0x8008 "Bootstrap only") with password 0 (else 0x800A "No rights"). In
-//    Boot any other name gets 0x8009 "Not Bootstrap"; outside Boot 0x8002 "Access denied" (the
-//    drive keeps no other files). Accepted: ACK with packet number 0.
+//  - Write request (WRQ), by default (profile foe_strict_firmware_check false): any file, any
+//    name and password, is firmware, accepted in Boot only (elsewhere 0x8008 "Bootstrap only").
+//    Strict (the SSC's checks, for testing a master's error handling): a file whose name starts
+//    with "ECATFW__" is firmware, accepted in Boot only, with password 0 (else 0x800A "No
+//    rights"); in Boot any other name gets 0x8009 "Not Bootstrap", outside Boot 0x8002 "Access
+//    denied" (the drive keeps no other files). Accepted: ACK with packet number 0.
 //  - DATA n: n = last acknowledged + 1 is stored and acknowledged; n = the last acknowledged one
 //    again (the master lost our ACK) is acknowledged again and not stored twice; any other n ends
 //    the transfer with 0x8005 "Packet number wrong". More than max_file_bytes in all: 0x8003
-//    "Disk full". A packet shorter than (SM0 length - 12) is the last: the file is checked as a
-//    firmware image (firmware_image.hpp) and answered with ACK, or with 0x800C / 0x800D.
+//    "Disk full". A packet shorter than (SM0 length - 12) is the last. Strict: the file is checked
+//    as a firmware image (firmware_image.hpp) and answered with ACK, or with 0x800C / 0x800D.
+//    By default it is kept as given and acknowledged; its size and CRC-32 are last_download().
 //  - With a programming time, the last packet is answered BUSY (done/entire in percent) until
 //    the image is "programmed"; the master repeats that packet until it gets the ACK.
 //  - Read request (RRQ): the product documents download only, so every name is 0x8001 "Not found".
@@ -67,6 +70,12 @@ public:
   void power_on();
 
   std::string_view running_version() const { return {running_.data(), running_length_}; }
+  // The last file taken (the image as given): its size and CRC-32 (IEEE 802.3, as zlib's crc32).
+  struct Download {
+    std::size_t bytes = 0;
+    std::uint32_t crc32 = 0;
+  };
+  const Download& last_download() const { return last_download_; }
   const FirmwareStore& store() const { return store_; }
 
 private:
@@ -100,6 +109,8 @@ private:
   std::size_t running_length_ = 0;
   std::array<char, kImageFieldSize> flash_{};     // version in "flash" (file or memory)
   std::size_t flash_length_ = 0;
+  bool strict_ = false;                           // profile foe_strict_firmware_check
+  Download last_download_;
 };
 
 }  // namespace vdrive::firmware::foe
