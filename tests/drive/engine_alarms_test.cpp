@@ -3,6 +3,7 @@
 // clears only by the documented procedure (cause gone, then the 0->1 edge of 6040h bit 7).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "tests/drive/engine_bench.hpp"
@@ -129,6 +130,52 @@ TEST(AlErrorAlarm, ClearsOnlyAfterTheAlAcknowledge) {
     EXPECT_EQ(b.get(0x603F), 0);
   }
   EXPECT_FALSE(EngineBench("ds1000a").engine().raise_al_error(0x001B, 0)) << "the DS1000A-EC lists no such alarm";
+}
+
+// DS5C1 method 4: "通过 SDO 写指令清除报警，F0-00 对应对象字典为 0x4000 ... 给 D0 写入 1 清除报警"
+// (L7408-L7412), as the panel's F0-00 = 1 (method 2): the alarm clears and the PDS goes from Fault
+// to Switch on disabled (L7400-L7402), without the AL acknowledge method 1 needs (L7394-L7396).
+// Every E-8xx remedy cites it ("可通过伺服面板F0-00=1来清除报警", L7114-L7138).
+TEST(DriveSideClear, Ds5c1SdoWriteOf1To4000hClearsTheAlarm) {
+  EngineBench b("ds5c1");
+  ASSERT_TRUE(b.has(0x4000)) << "F0-00 is in the dictionary (8.3.1, L5795)";
+  ASSERT_TRUE(b.enable(mode::csp)) << b.diag();
+  b.bus.al_error_pending = true;   // the AL error stays unacknowledged: method 4 does not need it
+  ASSERT_TRUE(b.engine().raise_al_error(0x001B, b.now()));   // E-804
+  b.run(300 * kMs);
+  ASSERT_EQ(b.engine().state(), PdsState::Fault) << b.diag();
+  auto sdo_write = [&](std::uint16_t value) {
+    const std::array<std::uint8_t, 2> data{static_cast<std::uint8_t>(value), static_cast<std::uint8_t>(value >> 8)};
+    return b.store().write(0x4000, 0, data, ecat::AlState::Op);
+  };
+  EXPECT_EQ(sdo_write(0), od::SdoAbort::Ok);   // any value is taken; only 1 clears
+  b.run(5 * kMs);
+  EXPECT_EQ(b.engine().state(), PdsState::Fault) << b.diag();
+  EXPECT_EQ(sdo_write(1), od::SdoAbort::Ok);
+  b.run(5 * kMs);
+  EXPECT_EQ(b.engine().state(), PdsState::SwitchOnDisabled) << b.diag();
+  EXPECT_EQ(b.get(0x603F), 0);
+  EXPECT_FALSE(b.engine().alarms().active());
+}
+
+// The clear is refused while the alarm's cause is present, as a fault reset is (L7400: an alarm
+// that can be cleared); the A6B and the DS1000A-EC have no such object.
+TEST(DriveSideClear, RefusedWhileTheCauseIsPresentAndAbsentElsewhere) {
+  EngineBench b("ds5c1");
+  ASSERT_TRUE(b.enable(mode::csp)) << b.diag();
+  b.engine().set_injected_fault(InjectedFault::over_voltage, true, b.now());
+  b.run(300 * kMs);
+  ASSERT_EQ(b.engine().state(), PdsState::Fault) << b.diag();
+  const std::array<std::uint8_t, 2> one{1, 0};
+  EXPECT_EQ(b.store().write(0x4000, 0, one, ecat::AlState::Op), od::SdoAbort::Ok);
+  b.run(5 * kMs);
+  EXPECT_EQ(b.engine().state(), PdsState::Fault) << b.diag();
+  b.engine().set_injected_fault(InjectedFault::over_voltage, false, b.now());
+  EXPECT_EQ(b.store().write(0x4000, 0, one, ecat::AlState::Op), od::SdoAbort::Ok);
+  b.run(5 * kMs);
+  EXPECT_EQ(b.engine().state(), PdsState::SwitchOnDisabled) << b.diag();
+  EXPECT_EQ(EngineBench("a6b").profile().drive.alarm_rules.drive_clear_index, 0);
+  EXPECT_EQ(EngineBench("ds1000a").profile().drive.alarm_rules.drive_clear_index, 0);
 }
 
 // A6B: enabling with 6060h = 6061h = 0 is Err88.1 (L10625); DS5C1 E-881 (L7136); the DS1000A-EC

@@ -207,5 +207,127 @@ TEST_F(HandWrittenStore, ABoolIsOneByteHoldingZeroOrOne) {
   EXPECT_EQ(read_bytes(store_, 0x2102, 0), (std::vector<std::uint8_t>{0}));
 }
 
+
+// ---- DS5C1 digit-field parameters and undocumented indexes (issue 22 item 8) ------------------
+
+class Ds5c1Store : public ::testing::Test {
+protected:
+  static void SetUpTestSuite() { dict_ = new Dictionary(Dictionary::load(profile::load_profile("ds5c1"))); }
+  static void TearDownTestSuite() { delete dict_; }
+  static Dictionary* dict_;
+  ObjectStore store_{*dict_};
+  SdoAbort write16(std::uint16_t index, std::uint16_t value) {
+    return store_.write(index, 0, le<std::uint16_t>(value), AlState::PreOp);
+  }
+};
+Dictionary* Ds5c1Store::dict_ = nullptr;
+
+// App. 1.1 gives hexadecimal parameters a range per digit (P0-09.0 0~1, .2 0~F, .3 0~7, L8659-L8665):
+// a field outside its range aborts as a whole value would, 06090031h above, 06090032h below.
+TEST_F(Ds5c1Store, AHexDigitFieldOutsideItsRangeAborts) {
+  EXPECT_EQ(write16(0x2009, 0x7F01), SdoAbort::Ok);            // every field at its maximum
+  EXPECT_EQ(write16(0x2009, 0x0002), SdoAbort::ValueTooHigh);  // P0-09.0 = 2 > 1
+  EXPECT_EQ(write16(0x2009, 0x8000), SdoAbort::ValueTooHigh);  // P0-09.3 = 8 > 7
+  EXPECT_EQ(write16(0x2009, 0x00F0), SdoAbort::Ok);            // digit 1: no field, any value (L8659-L8665 skip it)
+  EXPECT_EQ(write16(0x2202, 0x0303), SdoAbort::Ok);            // P2-02.0 / .2 1~3 (L8737-L8738)
+  EXPECT_EQ(write16(0x2202, 0x0300), SdoAbort::ValueTooLow);   // P2-02.0 = 0 < 1
+  EXPECT_EQ(write16(0x2701, 0x2216), SdoAbort::Ok);            // P7-01.0~1 00..16 listed (L8954-L8958)
+  EXPECT_EQ(write16(0x2701, 0x2217), SdoAbort::ValueTooHigh);
+  EXPECT_EQ(write16(0x2044, 0x0000), SdoAbort::ValueTooLow);   // P0-68.0~1 0x01~0xFF (L8687)
+}
+
+// P5-21, P5-26 and P5-61 (L8868-L8869, L8878, L8923): fields 0~ff and 0~f cover whole digits, so
+// every value their digits can hold is taken; digit 3 (and 2-3 of P5-61) is documented by no field
+// and takes any value, no stricter than the manual.
+TEST_F(Ds5c1Store, TheP5TerminalParametersTakeWhatTheirDigitsHold) {
+  for (const std::uint16_t index : {0x2515, 0x251A, 0x253D}) {
+    const EntryDesc* e = dict_->find(index, 0);
+    ASSERT_NE(e, nullptr);
+    ASSERT_FALSE(e->digit_fields.empty()) << std::hex << index;
+    EXPECT_EQ(e->digit_fields[0].max, 0xFF) << std::hex << index;
+    EXPECT_EQ(write16(index, 0x0014), SdoAbort::Ok) << std::hex << index;   // SI4 inverse (L8866)
+    EXPECT_EQ(write16(index, 0xFFFF), SdoAbort::Ok) << std::hex << index;
+  }
+  EXPECT_EQ(dict_->find(0x2515, 0)->digit_fields.size(), 2u);   // .0~1 and .2
+  EXPECT_EQ(dict_->find(0x253D, 0)->digit_fields.size(), 1u);   // .0~1 only
+}
+
+// The 253 indexes App. 2.2 declares and App. 1.1 does not document (P0-06, ...) are 16-bit registers
+// with no range: any 16-bit value is stored and read back; a write of another length is refused.
+TEST_F(Ds5c1Store, UndocumentedIndexesTakeAny16BitValue) {
+  std::size_t undocumented = 0;
+  for (const ObjectDesc& o : dict_->objects())
+    if (o.index >= 0x2000 && o.index < 0x3000 && !o.entries[0].min && !o.entries[0].max &&
+        o.entries[0].digit_fields.empty())
+      ++undocumented;
+  EXPECT_EQ(undocumented, 253u + 7u);   // + P4-10/P4-11, P5-57..59, P5-62/63: documented, range not a number
+  EXPECT_EQ(write16(0x2006, 0xFFFF), SdoAbort::Ok);   // P0-06
+  EXPECT_EQ(read_unsigned(store_, 0x2006, 0), 0xFFFFu);
+  EXPECT_EQ(store_.write(0x2006, 0, le<std::uint32_t>(1), AlState::PreOp), SdoAbort::LengthMismatch);
+}
+
+// ---- DS5C1 chapter 8.3 objects (issue 22 item 7) ----------------------------------------------
+
+// 8.3.1 (L5785-L5832) lists 3000h-3061h (U0-00..U0-97), 3100h/3101h (U1-00/01), 4000h (F0-00),
+// 4106h (F1-06) and the typed 5000h-5002h, although App. 2 calls 3000h-5FFFh reserved (L9165-L9167).
+TEST_F(Ds5c1Store, Chapter8ObjectsOf3000hTo5FFFhArePresent) {
+  for (std::uint16_t i = 0x3000; i <= 0x3061; ++i) {
+    const EntryDesc* e = dict_->find(i, 0);
+    ASSERT_NE(e, nullptr) << std::hex << i;
+    EXPECT_EQ(e->access & access::kWriteAll, 0) << "a monitor is read-only";
+  }
+  EXPECT_EQ(dict_->find(0x3062, 0), nullptr);
+  for (const std::uint16_t i : {0x3100, 0x3101}) EXPECT_NE(dict_->find(i, 0), nullptr);
+  EXPECT_EQ(write16(0x4000, 1), SdoAbort::Ok);   // F0-00 alarm clear (L7408-L7412)
+  EXPECT_EQ(write16(0x4106, 1), SdoAbort::Ok);   // F1-06 multi-turn clear (L1901, L2056)
+  const EntryDesc* pos = dict_->find(0x5000, 0);
+  ASSERT_NE(pos, nullptr);
+  EXPECT_EQ(pos->type, DataType::Integer32);     // L5830
+  EXPECT_NE(pos->access & access::kTxPdoMappable, 0);
+  const EntryDesc* decel = dict_->find(0x5002, 0);
+  ASSERT_NE(decel, nullptr);
+  EXPECT_EQ(decel->type, DataType::Unsigned16);  // L5832
+  EXPECT_NE(decel->access & access::kRxPdoMappable, 0);
+  EXPECT_EQ(store_.write(0x5000, 0, le<std::int32_t>(0), AlState::PreOp), SdoAbort::ReadOnly);
+}
+
+// ---- DS1000A-EC objects documented outside 13.2.1 (issue 22 items 5 and 6) -------------------
+
+class Ds1000aStore : public ::testing::Test {
+protected:
+  static void SetUpTestSuite() { dict_ = new Dictionary(Dictionary::load(profile::load_profile("ds1000a"))); }
+  static void TearDownTestSuite() { delete dict_; }
+  static Dictionary* dict_;
+  ObjectStore store_{*dict_};
+};
+Dictionary* Ds1000aStore::dict_ = nullptr;
+
+// 60D9h/60DAh "Supported: Yes" in 13.2.2 (L5429, L5431); 2156h/2157h in the 11.1.2 prose (L4198, L4210).
+TEST_F(Ds1000aStore, ObjectsDocumentedOutsideTheTableArePresent) {
+  EXPECT_EQ(read_unsigned(store_, 0x60D9, 0), 0u);   // no ETG.6010 synchronisation function
+  EXPECT_EQ(store_.write(0x60D9, 0, le<std::uint32_t>(1), AlState::PreOp), SdoAbort::ReadOnly);
+  EXPECT_EQ(store_.write(0x60DA, 0, le<std::uint32_t>(0x12345678), AlState::PreOp), SdoAbort::Ok);
+  EXPECT_EQ(read_unsigned(store_, 0x60DA, 0), 0x12345678u);
+  EXPECT_EQ(store_.write(0x2156, 0, le<std::uint8_t>(2), AlState::PreOp), SdoAbort::Ok);    // 2: command torque
+  EXPECT_EQ(store_.write(0x2156, 0, le<std::uint8_t>(3), AlState::PreOp), SdoAbort::ValueTooHigh);
+  EXPECT_EQ(store_.write(0x2157, 0, le<std::uint8_t>(3), AlState::PreOp), SdoAbort::Ok);    // 3: in-position
+}
+
+// 11.1 and 13.2.1 disagree (L3905-L3979 / L4806-L4868); the dictionary keeps 13.2.1's type, which sets
+// the SDO length a master sends: 1 byte for 210Dh, 2119h, 211Ch, 2154h, 2158h-215Fh, 2162h, 2163h
+// (11.1: U16), and for 210Fh/2117h (11.1: BOOL, also 1 byte); 2 bytes for 2143h (11.1: BOOL);
+// 210Eh 0-5000 (11.1: 0-3000) and 210Fh 0-2 (11.1 and the prose L4060-L4065: 0-1), the wider ranges.
+TEST_F(Ds1000aStore, ConflictingTypesFollow13_2_1) {
+  for (const std::uint16_t i : {0x210D, 0x2119, 0x211C, 0x2154, 0x2158, 0x2159, 0x215A, 0x215B, 0x215C, 0x215D,
+                                0x215E, 0x215F, 0x2162, 0x2163, 0x210F, 0x2117}) {
+    EXPECT_EQ(dict_->find(i, 0)->type, DataType::Unsigned8) << std::hex << i;
+    EXPECT_EQ(store_.write(i, 0, le<std::uint16_t>(0), AlState::PreOp), SdoAbort::LengthMismatch) << std::hex << i;
+  }
+  EXPECT_EQ(dict_->find(0x2143, 0)->type, DataType::Unsigned16);
+  EXPECT_EQ(dict_->find(0x2108, 0)->type, DataType::Integer32);
+  EXPECT_EQ(store_.write(0x210E, 0, le<std::uint16_t>(5000), AlState::PreOp), SdoAbort::Ok);
+  EXPECT_EQ(store_.write(0x210F, 0, le<std::uint8_t>(2), AlState::PreOp), SdoAbort::Ok);
+}
+
 }  // namespace
 }  // namespace vdrive::od

@@ -20,7 +20,10 @@ APP11 = (8630, 9001)
 APP21 = (9172, 9288)
 APP22 = (9289, 9338)
 APP23 = (9339, 10293)
-TABLE_LINES = "L8630-L9001 (App. 1.1), L9151-L10293 (App. 2.1-2.3)"
+CH83 = (5785, 5833)   # 8.3.1 tables of the 3000h-5FFFh objects (U monitors, F functions, 5000h-5002h)
+APP12 = (9002, 9014)  # App. 1.2 F-group functions
+APP13 = (9015, 9150)  # App. 1.3 U-group monitors
+TABLE_LINES = "L8630-L9001 (App. 1.1), L9151-L10293 (App. 2.1-2.3), L5785-L5832 (8.3.1, 3000h-5FFFh)"
 # App. 2.2 ranges per group end at these P-numbers; P4, P6, P9 and P1-75, P5-72..78 lie outside them.
 EFFECT = {"○": "change while servo off, effective at once", "√": "change any time, effective at once",
           "●": "effective after power cycle", "△": "change any time, effective when the motor is stopped",
@@ -200,6 +203,9 @@ def parse_app11(lines):
         fld = {"digits": f"{lo}" if lo == hi else f"{lo}-{hi}", "description": _clean(desc),
                "units": None if units.strip() in ("-", "") else _clean(units),
                "default": _clean(default), "range": _clean(rng), "effect": _clean(effect), "line": n}
+        limits = field_limits(fld["digits"], fld["range"])
+        if limits is not None:
+            fld["min"], fld["max"] = limits
         info["fields"].append(fld)
         last = fld
     return params, skipped
@@ -230,6 +236,22 @@ def _param_info(desc, units, default, rng, effect, modes, n):
     elif t:
         info["range_text"] = t
     return info
+
+
+def field_limits(digits: str, range_text: str):
+    """A digit field's range as integers of the field's own value: App. 1.1 prints each field's range in
+    hexadecimal digits (`0~f`, `0~ff`, `0x01~0xFF`; P7-01.0~1 `0~16` lists the values 00..16, L8954-L8958).
+    A bound beyond what the field's digits hold (P1-75.0~1 `0~500`, L8727-L8728) is cut to the digits'
+    capacity. None when the text is not a range."""
+    first, _, last = digits.partition("-")
+    capacity = (1 << (4 * (int(last or first) - int(first) + 1))) - 1
+    parts = re.split(r"~", range_text.replace(" ", ""))
+    if len(parts) != 2:
+        return None
+    lo, hi = (parse_int("0x" + v.lower().replace("0x", "")) for v in parts)
+    if lo is None or hi is None:
+        return None
+    return min(lo, capacity), min(hi, capacity)
 
 
 def _compose_field_default(fields):
@@ -289,6 +311,82 @@ def p_objects(lines):
         e.attributes = attrs
         objects.append(Object(index=idx, name=pname, object_code="VAR", line=line, entries=[e]))
     return objects, skipped
+
+
+# ---------------------------------------------------------------- 8.3.1, 3000h-5FFFh
+
+_MONITOR = re.compile(r"^([UF])(\d)-(\d+)$")
+
+
+def _app1_descriptions(lines):
+    """{'U0-00': (content, unit)} from App. 1.3 and {'F0-00': (content, None)} from App. 1.2."""
+    out = {}
+    for first, last in (APP12, APP13):
+        for n in range(first, last + 1):
+            c = cells(lines[n - 1])
+            if not c or not _MONITOR.match(c[0]):
+                continue
+            content = " ".join(x for x in (_clean(v) for v in c[1:-1] if v) if x) if len(c) > 2 else _clean(c[1])
+            unit = _clean(c[-1]) if len(c) > 2 else None
+            out[c[0]] = (content, unit or None, n)
+    return out
+
+
+def parse_ch83(lines):
+    """The 3000h-5FFFh objects of 8.3.1 (L5785-L5832): U monitors (3000h + (group << 8) + number, as the
+    P-parameters' rule L5834-L5844), F functions (4000h + ...), listed by index and name only with `...`
+    standing for every index between; and 5000h-5002h, printed with type, access and PDO. App. 2 (L9165-L9167)
+    calls 3000h-5FFFh reserved; chapter 8's explicit table is what a master is told to use (F0-00 = 4000h
+    clears alarms, L7408; U1-00 = 3100h is the current alarm, L7380)."""
+    descriptions = _app1_descriptions(lines)
+    objects, prev, pending = [], None, None
+    for n in range(*CH83):
+        c = cells(lines[n - 1])
+        if not c or c[0] in ("索引", ""):
+            continue
+        if c[0] == "...":
+            pending = n
+            continue
+        m = _INDEX.match(c[0])
+        if not m:
+            continue
+        idx = int(m.group(1), 16)
+        if idx < 0x3000:
+            prev, pending = None, None  # a P-parameter row: App. 2.2 and App. 1.1 give those
+            continue
+        if len(c) == 8:  # | 索引 | 子索引 | 名称 | 单位 | 数据范围 | 数据类型 | 标志 | PDO |
+            e = _entry_from(0, c[2], c[3], c[4], c[5], c[6], c[7], n)
+            objects.append(Object(index=idx, name=e.name, name_en=e.name_en, object_code="VAR", line=n,
+                                  entries=[e]))
+            prev, pending = idx, None
+            continue
+        todo = [(idx, c[2], n)]
+        if pending is not None and prev is not None:
+            todo = [(i, None, pending) for i in range(prev + 1, idx)] + todo
+        pending = None
+        for i, name, line in todo:
+            kind = "U" if i < 0x4000 else "F"
+            group, number = (i >> 8) & 0xF, i & 0xFF
+            expected = f"{kind}{group}-{number:02d}"
+            if name is not None and name != expected:
+                raise ValueError(f"{MANUAL} L{line}: {c[0]} named {name!r}, the index rule gives {expected}")
+            monitor = kind == "U"
+            e = Entry(subindex=0, name=expected, data_type="U16", access="ro" if monitor else "rw", pdo="no",
+                      line=line)
+            attrs = {}
+            if expected in descriptions:
+                text, unit, dline = descriptions[expected]
+                if text:
+                    attrs["description"] = f"{text} (L{dline})"
+                if unit and unit not in ("-",):
+                    e.units = unit
+            if name is None:
+                attrs["elided"] = True
+            attrs["inferred"] = ["data_type", "access", "pdo"]
+            e.attributes = attrs
+            objects.append(Object(index=i, name=expected, object_code="VAR", line=line, entries=[e]))
+        prev = idx
+    return objects
 
 
 # ---------------------------------------------------------------- App. 2.3
@@ -353,7 +451,7 @@ def parse_app23(lines):
 
 def extract(text):
     lines = text.split("\n")
-    objects = parse_app21(lines) + parse_app23(lines)
+    objects = parse_app21(lines) + parse_app23(lines) + parse_ch83(lines)
     p_objs, skipped = p_objects(lines)
     objects += p_objs
     notes = [
@@ -370,10 +468,19 @@ def extract(text):
         "after power cycle. attributes.op_modes is 适用模式 (P-parameters: normal-mode numbers 1 torque, 3 speed, "
         "5 internal position, 6 pulse position, 7 pulse speed, or EtherCAT mode numbers).",
         "Digit-field parameters (n. hexadecimal, e.g. P0-09.0): attributes.fields lists each field; default is "
-        "the 16-bit value composed from the fields' hexadecimal defaults, min/max are not given.",
+        "the 16-bit value composed from the fields' hexadecimal defaults, the entry's min/max are not given. Each "
+        "field's min/max is its printed range read as hexadecimal digits (cut to what its digits hold); an SDO "
+        "write whose field is outside them is refused. Digits no field documents take any value.",
+        "Indexes App. 2.2 declares without App. 1.1 documentation (attributes.documented: false) take any 16-bit "
+        "value: the manual gives no range or meaning, and the drive does nothing with them.",
         "App. 1.1 rows not turned into objects: " + "; ".join(f"L{n} {k}" for n, k in skipped)
         if skipped else "Every App. 1.1 row is turned into an object field.",
         "Defaults of the CoE and profile areas are not in the appendices: default is null there.",
+        "3000h-5FFFh: the objects of 8.3.1 (L5785-L5832), although App. 2 calls the area reserved (L9165-L9167): "
+        "U monitors 3000h-3061h (U0-00..U0-97) and 3100h-3101h (U1-00, U1-01), F functions 4000h (F0-00, alarm "
+        "clear, L7408) and 4106h (F1-06), index = 3000h/4000h + (group << 8) + number. The manual gives them no "
+        "type, access or PDO: U16, monitors ro and functions rw, not mappable (attributes.inferred); descriptions "
+        "and units from App. 1.2/1.3 where listed. 5000h-5002h are printed with type, access, PDO and range.",
         "writable_in [PREOP]: 1C12h/1C13h subindexes 01h-04h (L5587) and 1600h-1603h/1A00h-1A03h subindexes "
         "01h-18h (L5622, L5652) can be changed only in PreOP while subindex 00h = 0.",
     ]

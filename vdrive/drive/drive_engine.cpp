@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "common/round.hpp"
+#include "ethercat/little_endian.hpp"
 
 #include "vdrive/drive/control/motor_setpoint.hpp"
 #include "vdrive/drive/modes/cyclic_position_mode.hpp"
@@ -79,6 +80,18 @@ DriveEngine::DriveEngine(const profile::ProductProfile& profile, od::ObjectStore
     injected_alarms_[i] = code.empty() ? nullptr : alarms_.find(code);
   }
   period_ = std::max<Nanos>(static_cast<Nanos>(profile.drive.control_period_ns), 1000);
+  // The panel's alarm clear as an object (DS5C1 F0-00 = 4000h, write 1, L7408-L7412): the write is
+  // taken (any value is stored, the manual gives no range) and the next control step clears the
+  // alarms through the alarm manager's drive-side clear, as the panel does.
+  const profile::AlarmRulesSpec& rules = profile.drive.alarm_rules;
+  if (rules.drive_clear_index != 0 && objects.dictionary().find(rules.drive_clear_index, rules.drive_clear_subindex)) {
+    objects.on_write(rules.drive_clear_index,
+                     [request = drive_clear_request_, sub = rules.drive_clear_subindex,
+                      value = rules.drive_clear_value](const od::EntryDesc& e, std::span<const std::uint8_t> data) {
+                       if (e.subindex == sub && ecat::get_le(data) == value) *request = true;
+                       return od::SdoAbort::Ok;
+                     });
+  }
 }
 
 DriveEngine::~DriveEngine() = default;
@@ -117,6 +130,7 @@ void DriveEngine::power_on(Nanos now) {
   offset_user_ = 0.0;
   pds_.power_on();
   selector_.power_on();
+  *drive_clear_request_ = false;
   alarms_.power_on();
   monitors_.power_on();
   io_.power_on();
@@ -335,6 +349,14 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   if (profile_.drive.limit_switches == profile::LimitSwitchRule::Alarm && limits_.limit_switch_active())
     raise_cause(profile_.drive.alarms.limit_switch, t);
 
+  // Cleared from the drive's side (DS5C1 4000h = 1): refused, as a fault reset, while a cause is
+  // present or the fault reaction runs; no AL acknowledge needed (method 2, L7400-L7402).
+  bool cleared_by_drive = false;
+  if (*drive_clear_request_) {
+    *drive_clear_request_ = false;
+    cleared_by_drive = alarms_.clear_from_drive(pds_.state() == PdsState::FaultReactionActive, t);
+  }
+
   // Power drive system.
   const std::uint16_t controlword = obj_.controlword.get();
   PdsConditions c;
@@ -347,6 +369,7 @@ void DriveEngine::step(Nanos t, const BusState& bus) {
   }
   const bool reacting = pds_.state() == PdsState::FaultReactionActive;
   c.fault_reset_allowed = alarms_.reset_allowed(bus.al_error_pending, reacting, t);
+  c.cleared_by_drive = cleared_by_drive;
   c.stopped = sample_.stopped;
   c.esm_init = bus.esm_init;
   c.mode = selector_.active();

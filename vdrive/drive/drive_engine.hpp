@@ -147,6 +147,9 @@ private:
   std::array<const profile::AlarmSpec*, kInjectedFaultCount> injected_alarms_{};   // nullptr: the product has none
   bool cycle_pending_ = false;
   Nanos cycle_time_ = 0;
+  // Set by an SDO write of the product's drive-clear value (alarm_rules.drive_clear, DS5C1 4000h = 1),
+  // taken by the next control step. Shared with the store's write hook, which may outlive the engine.
+  std::shared_ptr<bool> drive_clear_request_ = std::make_shared<bool>(false);
 };
 
 }  // namespace vdrive::drive

@@ -25,6 +25,14 @@ constexpr std::uint16_t kReadAll = kReadPreOp | kReadSafeOp | kReadOp;
 constexpr std::uint16_t kWriteAll = kWritePreOp | kWriteSafeOp | kWriteOp;
 }  // namespace access
 
+// One hexadecimal digit field of a 16-bit parameter (DS5C1 `n.` parameters, objects.yaml
+// attributes.fields): digits [shift/4, shift/4 + bits/4) hold a value that must lie in min..max.
+struct DigitField {
+  std::uint8_t shift = 0;   // bit position of the field's lowest digit
+  std::uint8_t bits = 4;    // 4 per digit
+  std::uint16_t min = 0, max = 0xF;
+};
+
 struct EntryDesc {
   std::uint16_t index = 0;
   std::uint8_t subindex = 0;
@@ -33,6 +41,7 @@ struct EntryDesc {
   std::uint16_t bit_length = 8;        // strings: 8 * capacity
   std::uint16_t access = 0;            // access:: bits, incl. PDO mappability bits
   std::optional<std::int64_t> min, max;
+  std::vector<DigitField> digit_fields;  // per-digit ranges; digits outside every field are free
   std::vector<std::uint8_t> default_value;  // little-endian, bit_length/8 bytes (min 1)
   std::string units;
   bool synthesized = false;            // not printed in the manual (e.g. sub 0 of a record)

@@ -59,6 +59,14 @@ SdoAbort check_range(const EntryDesc& e, std::span<const std::uint8_t> data) {
   if (e.max && value > *e.max) return SdoAbort::ValueTooHigh;
   if (e.min && value < *e.min) return SdoAbort::ValueTooLow;
   if (e.type == DataType::Boolean && value > 1) return SdoAbort::ValueRangeExceeded;
+  // A hexadecimal digit field out of its range is refused as a whole value would be (DS5C1 App. 1.1
+  // per-digit ranges, e.g. P0-09.0 0~1, L8659).
+  for (const DigitField& d : e.digit_fields) {
+    const auto field = static_cast<std::uint16_t>((static_cast<std::uint64_t>(value) >> d.shift) &
+                                                  ((std::uint64_t{1} << d.bits) - 1));
+    if (field > d.max) return SdoAbort::ValueTooHigh;
+    if (field < d.min) return SdoAbort::ValueTooLow;
+  }
   return SdoAbort::Ok;
 }
 

@@ -200,6 +200,39 @@ std::uint16_t access_bits(const Fields& f) {
   return bits;
 }
 
+// attributes.fields of a hexadecimal digit-field parameter (DS5C1 `n.` parameters): each field's
+// `digits` ("2" or "0-1") and `min`/`max` (the field's own value). Fields without min/max are free.
+std::vector<DigitField> parse_digit_fields(const Fields& f, const EntryDesc& e) {
+  std::vector<DigitField> out;
+  const YAML::Node attributes = f.get("attributes");
+  if (!attributes.IsDefined() || !attributes.IsMap()) return out;
+  const YAML::Node fields = attributes["fields"];
+  if (!fields.IsDefined()) return out;
+  if (!fields.IsSequence()) f.fail("attributes", "fields: expected a list");
+  const unsigned digits_in_value = e.bit_length / 4u;
+  for (const YAML::Node& field : fields) {
+    if (!field.IsMap()) f.fail("attributes", "fields: expected mappings");
+    const YAML::Node lo_node = field["min"], hi_node = field["max"], digits = field["digits"];
+    if (!lo_node.IsDefined() || !hi_node.IsDefined() || lo_node.IsNull() || hi_node.IsNull()) continue;
+    if (!digits.IsDefined() || !digits.IsScalar()) f.fail("attributes", "fields: a field without digits");
+    const std::string text = digits.Scalar();
+    const std::size_t dash = text.find('-');
+    std::int64_t first = 0, last = 0, lo = 0, hi = 0;
+    if (!Fields::parse_integer(text.substr(0, dash), first) ||
+        !Fields::parse_integer(dash == std::string::npos ? text : text.substr(dash + 1), last) || first < 0 ||
+        last < first || static_cast<std::uint64_t>(last) >= digits_in_value)
+      f.fail("attributes", "fields: digits '" + text + "' do not fit the value");
+    if (!Fields::parse_integer(lo_node.Scalar(), lo) || !Fields::parse_integer(hi_node.Scalar(), hi))
+      f.fail("attributes", "fields: min/max of digits " + text + " are not integers");
+    const auto bits = static_cast<std::uint8_t>(4 * (last - first + 1));
+    if (lo < 0 || hi < lo || hi >= (std::int64_t{1} << bits))
+      f.fail("attributes", "fields: range of digits " + text + " does not fit them");
+    out.push_back(DigitField{static_cast<std::uint8_t>(4 * first), bits, static_cast<std::uint16_t>(lo),
+                             static_cast<std::uint16_t>(hi)});
+  }
+  return out;
+}
+
 EntryDesc parse_entry(const YAML::Node& node, const std::string& file, const std::string& path,
                       std::uint16_t index) {
   const Fields f(node, file, path, kEntryKeys);
@@ -245,6 +278,7 @@ EntryDesc parse_entry(const YAML::Node& node, const std::string& file, const std
   if (e.min && (*e.min < type_lo || *e.min > type_hi)) f.fail("min", "does not fit " + std::string(short_name(e.type)));
   if (e.max && (*e.max < type_lo || *e.max > type_hi)) f.fail("max", "does not fit " + std::string(short_name(e.type)));
   if (e.min && e.max && *e.min > *e.max) f.fail("max", "is less than min");
+  e.digit_fields = parse_digit_fields(f, e);
   const std::int64_t lo = e.min.value_or(type_lo), hi = e.max.value_or(type_hi);
   std::int64_t value = 0;
   if (def.IsNull()) {

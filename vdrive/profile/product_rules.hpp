@@ -52,6 +52,11 @@ struct AlarmRulesSpec {
   // One alarm that becomes clearable only some time after it occurred ("" = none).
   std::string delayed_clear_code;
   std::uint32_t delayed_clear_after_ms = 0;
+  // An object whose write of `drive_clear_value` clears the alarms from the drive's own side, as
+  // the panel does (DS5C1 F0-00 = 4000h, L7400-L7412); index 0 = none.
+  std::uint16_t drive_clear_index = 0;
+  std::uint8_t drive_clear_subindex = 0;
+  std::uint32_t drive_clear_value = 0;
 };
 
 // Which product's 60FDh/60FEh bit layout, input logic and touch-probe quirks the I/O follows.

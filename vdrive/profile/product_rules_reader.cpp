@@ -77,6 +77,14 @@ AlarmRulesSpec read_alarm_rules(YamlMapReader m) {
   if (r.delayed_clear_code.empty() != (r.delayed_clear_after_ms == 0))
     d.fail("after_ms", "expected > 0 with an alarm code, 0 with code \"\"");
   d.finish();
+  if (m.has("drive_clear")) {   // optional: only a product whose panel clear is an object has it
+    YamlMapReader c = m.map("drive_clear");
+    r.drive_clear_index = c.u16("index");
+    r.drive_clear_subindex = c.u8("subindex");
+    r.drive_clear_value = c.u32("value");
+    if (r.drive_clear_index == 0) c.fail("index", "expected the object's index (leave drive_clear out for none)");
+    c.finish();
+  }
   m.finish();
   return r;
 }

@@ -89,6 +89,38 @@ TEST(AlarmDs5c1, PanelOrSdo4000hClearNeedsNoAlAcknowledge) {
   EXPECT_FALSE(b.alarms.active());
 }
 
+// 603Fh for a general alarm (issue 22 item 10). The manual: "显示伺服驱动器正在发生的报警主编号（3791及以上
+// 版本，通用报警显示完整错误代码，总线类报警显示主编号）" (L2557, also L7378, L9345-L9346) but bits 8-15 are
+// "值固定为FFh" (L9353) and bits 0-7 "显示正在发生的报警主编号", with "16h=22d, 当前报警可能为E-220~E-229中的一个"
+// (L9352), and every example keeps the main number (E-030 -> FF03h under the 3791 sentence itself, L2557,
+// L7378). A full code does not fit bits 0-7 for E-260..E-320, and FF00h + full code would make FF1Ah
+// both E-026 and E-26x: 603Fh keeps FF00h + main number; the full code is U1-00 = 3100h, which the
+// manual names for reading the current alarm by SDO (L7380-L7384).
+TEST(AlarmDs5c1, GeneralAlarm603FhShowsTheMainNumberAndU100TheFullCode) {
+  Bench b("ds5c1");
+  b.alarms.raise(b.alarm("E-222"), 0);
+  EXPECT_EQ(b.read_uint(0x603F, 0), 0xFF16u);   // 16h = 22d (L9352)
+  EXPECT_EQ(b.read_uint(0x3100, 0), 222u);      // U1-00 current alarm code (L7380, L9072)
+  b.alarms.raise(b.alarm("E-320"), 1);
+  EXPECT_EQ(b.read_uint(0x603F, 0), 0xFF20u);   // newest alarm, main number 32
+  EXPECT_EQ(b.read_uint(0x3100, 0), 320u);
+  EXPECT_EQ(b.read_uint(0x3101, 0), 0u);        // U1-01 current warning code (L9073): none
+  EXPECT_TRUE(b.alarms.clear_from_drive(false, 2));
+  EXPECT_EQ(b.read_uint(0x603F, 0), 0u);
+  EXPECT_EQ(b.read_uint(0x3100, 0), 0u);
+}
+
+TEST(AlarmDs5c1, BusAlarm603FhShowsTheMainNumberE817A000h) {
+  Bench b("ds5c1");
+  b.alarms.raise(b.alarm("E-851"), 0);
+  EXPECT_EQ(b.read_uint(0x603F, 0), 0xFF55u);   // "总线类报警显示主编号" (L2557): 55h = 85d
+  EXPECT_EQ(b.read_uint(0x3100, 0), 851u);
+  b.alarms.power_on();
+  b.alarms.raise(b.alarm("E-817"), 0);
+  EXPECT_EQ(b.read_uint(0x603F, 0), 0xA000u);   // the exception (L9355)
+  EXPECT_EQ(b.read_uint(0x3100, 0), 817u);
+}
+
 TEST(AlarmDs5c1, E899BusPeripheralFailureNeedsPowerCycle) {
   Bench b("ds5c1");
   b.alarms.raise(b.alarm("E-899"), 0);   // "contact the dealer" (L7139): not clearable

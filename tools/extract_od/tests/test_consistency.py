@@ -34,6 +34,15 @@ class Consistency(unittest.TestCase):
                     self.assertEqual(sub0["default"], max(subs), where)
             for e in o["entries"]:
                 here = f"{where}:{e['subindex']:02X}"
+                for f in (e.get("attributes") or {}).get("fields", []):
+                    # digit fields: a range within the field's digits, the composed default inside it
+                    first, _, last = f["digits"].partition("-")
+                    shift, width = 4 * int(first), 4 * (int(last or first) - int(first) + 1)
+                    self.assertLessEqual(0, f["min"], here)
+                    self.assertLessEqual(f["min"], f["max"], here)
+                    self.assertLessEqual(f["max"], (1 << width) - 1, here)
+                    if e["default"] is not None:
+                        self.assertTrue(f["min"] <= (e["default"] >> shift) & ((1 << width) - 1) <= f["max"], here)
                 self.assertIsInstance(e["line"], int, here)
                 self.assertIn(e["pdo"], ("no", "rx", "tx", None), here)
                 self.assertIn(e["access"], ("ro", "rw", None), here)

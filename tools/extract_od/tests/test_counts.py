@@ -21,6 +21,9 @@ def count_entries(objs, synthesized=None):
     return n
 
 
+ADDED_DS1000A = {0x2156, 0x2157, 0x60D9, 0x60DA}  # one VAR entry each (od-overrides.yaml `add`)
+
+
 class DS1000ACounts(unittest.TestCase):
     """Table 13.2.1, L4414-L5228."""
 
@@ -37,9 +40,10 @@ class DS1000ACounts(unittest.TestCase):
         printed = self.printed_indexes()
         self.assertEqual(len(printed), 142, "index rows in 13.2.1")
         self.assertEqual(len(set(printed)), 141, "distinct printed indexes (60BCh twice)")
-        # erratum: the second 60BCh row (L5053) is 60BDh
-        self.assertEqual(set(objects("ds1000a")), set(printed) | {0x60BD})
-        self.assertEqual(dictionary("ds1000a")["object_count"], 142)
+        # erratum: the second 60BCh row (L5053) is 60BDh; overrides `add` the objects documented outside
+        # 13.2.1: 2156h/2157h (11.1.2 prose, L4198, L4210), 60D9h/60DAh (13.2.2, L5429, L5431)
+        self.assertEqual(set(objects("ds1000a")), set(printed) | {0x60BD} | ADDED_DS1000A)
+        self.assertEqual(dictionary("ds1000a")["object_count"], 142 + len(ADDED_DS1000A))
 
     def test_entries(self):
         sub_rows = [r for r in self.rows if re.match(r"^([0-9A-F]{4}h? )?[0-9A-F]{2} ?h(\s|$)", r)]
@@ -47,7 +51,7 @@ class DS1000ACounts(unittest.TestCase):
         self.assertEqual(len(sub_rows), 304, "entry rows in 13.2.1")
         self.assertEqual(len(reserved), 2)
         objs = objects("ds1000a")
-        self.assertEqual(count_entries(objs, synthesized=False), 304 - len(reserved))
+        self.assertEqual(count_entries(objs, synthesized=False), 304 - len(reserved) + len(ADDED_DS1000A))
         # records printed without a 00h row get a synthesised subindex 0
         records_without_sub0 = 0
         for i, r in enumerate(self.rows):
@@ -56,7 +60,7 @@ class DS1000ACounts(unittest.TestCase):
                 records_without_sub0 += not nxt.startswith("00h")
         self.assertEqual(records_without_sub0, 15)
         self.assertEqual(count_entries(objs, synthesized=True), records_without_sub0)
-        self.assertEqual(dictionary("ds1000a")["entry_count"], 304 - 2 + 15)
+        self.assertEqual(dictionary("ds1000a")["entry_count"], 304 - 2 + 15 + len(ADDED_DS1000A))
 
 
 class A6BCounts(unittest.TestCase):
@@ -153,14 +157,30 @@ class DS5C1Counts(unittest.TestCase):
             for g, n in re.findall(r"P(\d)-(\d+)", first):
                 params.add(0x2000 | (int(g) << 8) | int(n))
         added = {0x608F: 3, 0x60E3: 33, 0x60C2: 3}  # overrides `add` (documented outside App. 2.3)
-        expected_objects = idx21 | idx23 | slots | params | set(added)
+        # 8.3.1 (L5785-L5832): 3000h-5FFFh rows, `...` standing for every index between its neighbours
+        ch83, prev, gap = set(), None, False
+        for l in self.span(5785, 5832):
+            m = re.match(r"^\|\s*([3-5][0-9A-F]{3})h\s*\|\s*00h\s*\|", l)
+            if m:
+                i = int(m.group(1), 16)
+                if gap and prev is not None:
+                    ch83 |= set(range(prev + 1, i))
+                ch83.add(i)
+                prev, gap = i, False
+            elif re.match(r"^\|\s*\.\.\.\s*\|", l):
+                gap = True
+            elif re.match(r"^\|\s*2[0-9A-F]{3}h", l):
+                prev, gap = None, False
+        self.assertEqual(len(ch83), 98 + 2 + 2 + 3, "U0-00..U0-97, U1-00/01, F0-00, F1-06, 5000h-5002h")
+        expected_objects = idx21 | idx23 | slots | params | set(added) | ch83
         objs = objects("ds5c1")
         self.assertEqual(set(objs), expected_objects)
         self.assertEqual(dictionary("ds5c1")["object_count"], len(expected_objects))
         synthesized = sum(1 for i in idx23 if not any(e["subindex"] == 0 for e in objs[i]["entries"]
                                                       if not e.get("synthesized")))
         self.assertEqual(synthesized, 6, "607Bh, 607Dh, 6091h, 6092h, 6099h, 60FEh print no subindex 0")
-        expected_entries = rows21 + elided21 + rows23 + synthesized + sum(added.values()) + len(slots | params)
+        expected_entries = (rows21 + elided21 + rows23 + synthesized + sum(added.values()) + len(slots | params)
+                            + len(ch83))
         self.assertEqual(count_entries(objs), expected_entries)
         self.assertEqual(dictionary("ds5c1")["entry_count"], expected_entries)
 

@@ -76,6 +76,16 @@ class DS5C1Rows(unittest.TestCase):
         fields = [{"digits": "0", "default": "0"}, {"digits": "2", "default": "F"}, {"digits": "3", "default": "0"}]
         self.assertEqual(ds5c1._compose_field_default(fields), 0x0F00)
 
+    def test_field_limits_are_hexadecimal_digits(self):
+        self.assertEqual(ds5c1.field_limits("0", "0~1"), (0, 1))            # P0-09.0 (L8659)
+        self.assertEqual(ds5c1.field_limits("2", "0~f"), (0, 15))           # P5-21.2 (L8869)
+        self.assertEqual(ds5c1.field_limits("0-1", "0~ff"), (0, 255))       # P5-21.0~1 (L8868)
+        self.assertEqual(ds5c1.field_limits("0-1", "0x01~0xFF"), (1, 255))  # P0-68.0~1 (L8687)
+        self.assertEqual(ds5c1.field_limits("0-1", "0~16"), (0, 0x16))      # P7-01.0~1: 00..16 listed (L8954-L8958)
+        self.assertEqual(ds5c1.field_limits("0-1", "0~500"), (0, 255))      # P1-75.0~1 (L8727): cut to 2 digits
+        self.assertEqual(ds5c1.field_limits("2", "1~3"), (1, 3))            # P2-02.2 (L8738)
+        self.assertIsNone(ds5c1.field_limits("0", "※1"))
+
 
 class Overrides(unittest.TestCase):
     def test_text_override_must_match(self):

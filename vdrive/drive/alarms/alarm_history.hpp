@@ -23,6 +23,8 @@ public:
   virtual void record(const profile::AlarmSpec& alarm) = 0;  // an alarm whose `history` is set occurred
   virtual void power_on() = 0;                               // re-publish after the store was reset
   virtual const AlarmLog& log() const = 0;
+  // The alarm and the warning now shown (nullptr: none), after every change (DS5C1 U1-00/U1-01).
+  virtual void current(const profile::AlarmSpec* /*alarm*/, const profile::AlarmSpec* /*warning*/) {}
   // The product's emergency-enable switch (A6B 10F3h-05h bit 0); true where there is none.
   virtual bool emergency_enabled() const { return true; }
 };

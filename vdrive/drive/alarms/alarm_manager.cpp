@@ -177,6 +177,7 @@ void AlarmManager::refresh() {
 void AlarmManager::publish() {
   error_code_.set(error_code());
   error_register_ref_.set(error_register_);
+  if (history_) history_->current(newest_, newest_warning_);   // DS5C1 U1-00/U1-01 (L7380, L9072-L9073)
 }
 
 void AlarmManager::emit(const ecat::coe::Emergency& e) const {

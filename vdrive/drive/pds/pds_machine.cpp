@@ -265,6 +265,8 @@ void PdsMachine::step(std::uint16_t controlword, const PdsConditions& c) {
       if (reset_edge && c.fault_reset_allowed) {
         state_ = PdsState::SwitchOnDisabled;
         fault_reset_event_ = true;
+      } else if (c.cleared_by_drive && !c.fault) {
+        state_ = PdsState::SwitchOnDisabled;   // cleared from the drive's side (DS5C1 L7400-L7402)
       }
       break;
   }

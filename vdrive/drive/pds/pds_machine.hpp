@@ -40,6 +40,7 @@ struct PdsConditions {
   profile::AlarmReaction fault_reaction{};   // reaction of the newest alarm (None: PDS unchanged)
   bool fault_is_communication = false;       // EtherCAT alarm: 605Eh applies (A6B Err80-88, DS5C1 E-8xx)
   bool fault_reset_allowed = false;          // the alarm manager allows clearing now (causes gone, A6B AL ack done)
+  bool cleared_by_drive = false;  // the drive cleared every alarm itself (DS5C1 F0-00 / 4000h): Fault -> Switch on disabled (L7400-L7402)
   bool stopped = false;           // axis at standstill: StopSequence::done(s) of this step's sample
   bool esm_init = false;          // EtherCAT state machine is in Init (transitions 7/10 on A6B/DS5C1)
   std::int8_t mode = 0;           // active mode 6061h (stop ramp choice)
