@@ -9,6 +9,8 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libeigen3-dev libode-dev
   libtinyxml2-dev libtomlplusplus-dev
+  libcpp-httplib-dev libjs-chart.js
+  chromium python3-websocket curl
   fastddsgen libfastrtps-dev libfastcdr-dev
   gnuplot-nox libpng-dev
   iproute2 tshark procps

@@ -14,6 +14,8 @@
 #include <span>
 #include <string>
 #include <thread>
+#include <limits>
+#include <functional>
 #include <vector>
 
 #include "master/cia402_program.hpp"
@@ -22,6 +24,11 @@
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/telemetry_command.hpp"
 #include "vdrive/cli/veth_pair.hpp"
+#include "vdrive/cli/web_option.hpp"
+#include "vdrive/control/fault_service.hpp"
+#include "vdrive/fault/impaired_link.hpp"
+#include "vdrive/fault/wire_impairment.hpp"
+#include "vdrive/telemetry/loop_services.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -41,7 +48,10 @@ extern "C" void on_signal(int) { g_stop.store(true); }
 struct DemoOptions {
   std::vector<std::string> drives{"a6b", "ds5c1", "ds1000a"};
   std::string suffix;
-  bool keep_running = false;
+  bool keep_running = false;          // keep the drives moving until Ctrl-C (default on a terminal)
+  bool once = false;                  // end after the run even on a terminal
+  std::string web = "8080";           // the live page (docs/web.md); empty: none
+  bool web_given = false;             // --web on the command line: failing to serve it is an error
   std::uint64_t op_cycles = 500;      // 0: stop at Pre-Op
   long long cycle_us = 1000;          // every product supports 1 ms
   double sine_seconds = 2.0;          // CiA 402 sine in csp after Op (0: process data only)
@@ -50,21 +60,24 @@ struct DemoOptions {
 };
 
 // The drives' side of the demo: a Network served by the event loop in its own thread, which
-// alone touches the network from start to join.
+// alone touches the network from start to join. The line has the runtime fault control (for the
+// page's fault buttons), and optionally DDS telemetry and the web page, as `vdrive run` has.
 class ServedLine {
 public:
-  // With a telemetry domain, the line publishes DDS telemetry as `vdrive run --telemetry` does.
-  ServedLine(const std::vector<std::string>& drives, const std::string& iface, std::optional<int> telemetry_domain)
-      : network_(drives, clock_), link_(iface),
-        telemetry_(telemetry_domain ? std::make_unique<telemetry::LineTelemetry>(network_, link_, clock_, counters_, nullptr,
+  ServedLine(const std::vector<std::string>& drives, const std::string& iface, std::optional<int> telemetry_domain,
+             const std::string& web, bool web_given)
+      : network_(drives, clock_), link_(iface), impaired_(link_, wire_, network_, clock_), faults_(network_, &wire_, &impaired_),
+        telemetry_(telemetry_domain ? std::make_unique<telemetry::LineTelemetry>(network_, impaired_, clock_, counters_, &faults_,
                                                                                   telemetry::LineTelemetryOptions{100.0, *telemetry_domain}, nullptr)
                                     : nullptr),
+        page_(start_web(web, network_, clock_, counters_, &faults_, "demo", iface, nullptr, !web_given)),
+        services_(telemetry_ ? &telemetry_->service() : static_cast<runtime::LoopService*>(&faults_),
+                  page_ ? &page_->service() : nullptr),
         thread_([this] {
           // As `vdrive run` by default: where the kernel has it, a short slice lets the line's
           // wake-ups preempt the demo's master and the host's other tasks (runtime/time_slice.hpp).
           (void)runtime::set_time_slice(100'000);
-          if (telemetry_) runtime::serve(network_, telemetry_->link(), clock_, stop_, counters_, &telemetry_->service());
-          else runtime::serve(network_, link_, clock_, stop_, counters_);
+          runtime::serve(network_, telemetry_ ? telemetry_->link() : impaired_, clock_, stop_, counters_, &services_);
         }) {}
   ~ServedLine() { stop(); }
   // Ends the event loop and waits for its thread; the counters are final afterwards.
@@ -73,14 +86,20 @@ public:
     if (thread_.joinable()) thread_.join();
   }
   const runtime::LoopCounters& counters() const { return counters_; }
+  const web::WebServer* page() const { return page_.get(); }
 
 private:
   MonotonicClock clock_;
   network::Network network_;
   link::RawSocketLink link_;
+  fault::WireImpairment wire_{1};
+  fault::ImpairedLink impaired_;
+  control::FaultService faults_;
   std::atomic<bool> stop_{false};
   runtime::LoopCounters counters_;
   std::unique_ptr<telemetry::LineTelemetry> telemetry_;
+  std::unique_ptr<web::WebServer> page_;
+  telemetry::LoopServices services_;
   std::thread thread_;  // last: starts once everything it uses exists
 };
 
@@ -134,8 +153,14 @@ void run_demo(const DemoOptions& opt) {
   try {
     std::optional<int> domain;
     if (opt.telemetry) domain.emplace(telemetry_domain(opt.domain));
-    ServedLine line(opt.drives, veth.slave_end(), domain);
+    ServedLine line(opt.drives, veth.slave_end(), domain, opt.web, opt.web_given);
     fmt::print("serving {} drive(s) on {}: {}\n", opt.drives.size(), veth.slave_end(), fmt::join(opt.drives, ", "));
+    if (line.page() != nullptr) fmt::print("web page: {}  (open it in a browser; docs/web.md)\n", line.page()->url());
+    // From a terminal the drives keep moving until Ctrl-C; in a script or CI the demo ends by itself.
+    const bool moving = !opt.once && (opt.keep_running || (::isatty(STDIN_FILENO) != 0 && ::isatty(STDOUT_FILENO) != 0));
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    std::fflush(stdout);
     std::optional<TelemetryView> view;
     if (domain) {
       view.emplace(*domain);
@@ -172,12 +197,20 @@ void run_demo(const DemoOptions& opt) {
       if (opt.sine_seconds > 0) {
         master::SineProgramOptions sine;
         sine.cycle = op.cycle;
-        sine.motion = static_cast<Nanos>(opt.sine_seconds * 1e9);
+        // Until Ctrl-C: a motion as long as a year, ended by the stop flag.
+        sine.motion = moving ? Nanos{365LL * 24 * 3600 * 1'000'000'000} : static_cast<Nanos>(opt.sine_seconds * 1e9);
         sine.frequency_hz = 0.5;
         sine.revolutions = 0.25;
         program.emplace(sine);
         program->attach(op);
         op.cycles = std::max(op.cycles, program->cycles_needed(op.cycle));
+      }
+      if (moving) {
+        fmt::print("the drives keep moving until Ctrl-C\n");
+        std::fflush(stdout);
+        op.cycles = std::numeric_limits<std::uint64_t>::max();
+        const std::function<bool()> finished = op.done;
+        op.done = [finished] { return g_stop.load() || (finished && finished()); };
       }
       const master::OpRunResult r = master::run_to_op(m, op, [](const std::string& line) { fmt::print("  {}\n", line); });
       for (const std::string& note : r.notes) fmt::print("  note: {}\n", note);
@@ -196,11 +229,9 @@ void run_demo(const DemoOptions& opt) {
       }
     }
 
-    if (opt.keep_running) {
+    if (moving && opt.op_cycles == 0) {  // no cyclic master: the line stays in Pre-Op until Ctrl-C
       fmt::print("drives keep running on {} (master end {}); Ctrl-C to stop\n", veth.slave_end(), veth.master_end());
       std::fflush(stdout);
-      std::signal(SIGINT, on_signal);
-      std::signal(SIGTERM, on_signal);
       while (!g_stop.load()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     view.reset();
@@ -234,8 +265,15 @@ void add_demo_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("!--no-telemetry", opt->telemetry, "No DDS telemetry (default: published and shown live, docs/telemetry.md)");
   cmd->add_option("--domain", opt->domain, "DDS domain id 0..232 for the telemetry (default $ROS_DOMAIN_ID, else 0)");
-  cmd->add_flag("--keep-running", opt->keep_running, "Keep the drives and the veth pair until Ctrl-C");
-  cmd->callback([opt] { run_demo(*opt); });
+  CLI::Option* keep = cmd->add_flag("--keep-running", opt->keep_running,
+                "Keep the drives moving (and the veth pair) until Ctrl-C; the default when run from a terminal");
+  cmd->add_flag("--once", opt->once, "End after --cycles / --sine-seconds even when run from a terminal")->excludes(keep);
+  CLI::Option* web = add_web_option(cmd, opt->web)->capture_default_str();
+  cmd->add_flag("--no-web", [opt](std::int64_t) { opt->web.clear(); }, "Do not serve the live page")->excludes(web);
+  cmd->callback([opt, web] {
+    opt->web_given = web->count() > 0;
+    run_demo(*opt);
+  });
 }
 
 }  // namespace vdrive::cli

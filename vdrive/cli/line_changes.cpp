@@ -12,10 +12,9 @@ namespace vdrive::cli {
 namespace {
 
 std::string alarm_text(const profile::ProductProfile& p, std::uint16_t error_code) {
-  for (const profile::AlarmSpec& a : p.alarms) {
-    if (a.error_code != error_code) continue;
-    const std::string& name = a.name_en.empty() ? a.name : a.name_en;
-    return fmt::format("alarm {} {} (603Fh {:04X}h)", a.code, name, error_code);
+  if (const profile::AlarmSpec* a = p.alarm_with_error_code(error_code)) {
+    const std::string& name = a->name_en.empty() ? a->name : a->name_en;
+    return fmt::format("alarm {} {} (603Fh {:04X}h)", a->code, name, error_code);
   }
   return fmt::format("alarm 603Fh {:04X}h", error_code);
 }

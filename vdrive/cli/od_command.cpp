@@ -13,6 +13,7 @@
 
 #include "ethercat/little_endian.hpp"
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/od/access_text.hpp"
 #include "vdrive/cli/product_source.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -62,24 +63,6 @@ std::string hex_bytes(const od::EntryDesc& e) {
   return out;
 }
 
-// "ro", "rw", or "rw(PreOp)" when writes are allowed in some states only.
-std::string access_text(std::uint16_t bits) {
-  const std::uint16_t write = bits & od::access::kWriteAll;
-  if (write == 0) return "ro";
-  if (write == od::access::kWriteAll) return "rw";
-  std::vector<std::string_view> states;
-  if (write & od::access::kWritePreOp) states.push_back("PreOp");
-  if (write & od::access::kWriteSafeOp) states.push_back("SafeOp");
-  if (write & od::access::kWriteOp) states.push_back("Op");
-  return fmt::format("rw({})", fmt::join(states, ","));
-}
-
-std::string_view pdo_text(std::uint16_t bits) {
-  if (bits & od::access::kRxPdoMappable) return "rx";
-  if (bits & od::access::kTxPdoMappable) return "tx";
-  return "-";
-}
-
 std::string default_text(const od::EntryDesc& e) {
   if (e.type == od::DataType::VisibleString) return fmt::format("\"{}\"", string_value(e));
   if (e.type == od::DataType::OctetString) return hex_bytes(e);
@@ -97,7 +80,7 @@ void print_text(const std::vector<const od::EntryDesc*>& entries) {
              "ACCESS", "PDO", "DEFAULT", "RANGE", "UNITS");
   for (const od::EntryDesc* e : entries) {
     fmt::print("{:04X}h  {:02X}h {:<40} {:<4} {:<16} {:<3} {:<22} {:<24} {}\n", e->index, e->subindex, e->name,
-               od::short_name(e->type), access_text(e->access), pdo_text(e->access), default_text(*e),
+               od::short_name(e->type), od::access_text(e->access), od::pdo_text(e->access), default_text(*e),
                range_text(*e), e->units.empty() ? "-" : e->units);
   }
 }
@@ -111,9 +94,9 @@ void print_json(const std::string& product, const std::vector<const od::EntryDes
     j["name"] = e->name;
     j["type"] = od::short_name(e->type);
     j["bit_length"] = e->bit_length;
-    j["access"] = access_text(e->access);
+    j["access"] = od::access_text(e->access);
     j["access_bits"] = e->access;
-    j["pdo"] = pdo_text(e->access) == "-" ? nullptr : nlohmann::ordered_json(pdo_text(e->access));
+    j["pdo"] = od::pdo_text(e->access) == "-" ? nullptr : nlohmann::ordered_json(od::pdo_text(e->access));
     if (e->type == od::DataType::VisibleString) j["default"] = string_value(*e);
     else if (e->type == od::DataType::OctetString) j["default"] = hex_bytes(*e);
     else j["default"] = integer_value(*e);

@@ -17,6 +17,8 @@
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/run_status.hpp"
 #include "vdrive/cli/telemetry_command.hpp"
+#include "vdrive/cli/web_option.hpp"
+#include "vdrive/telemetry/loop_services.hpp"
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/control_socket.hpp"
 #include "vdrive/control/fault_service.hpp"
@@ -65,6 +67,7 @@ struct RunOptions {
   bool no_control = false;
   StatusMode status = StatusMode::automatic;  // --status / --no-status
   RunTelemetryOptions telemetry;   // --telemetry: DDS telemetry (docs/telemetry.md)
+  std::string web;                 // --web [ADDR:]PORT: the live page (docs/web.md)
   machine::NetworkFile network;    // read from network_file
 };
 
@@ -282,6 +285,8 @@ void run(RunOptions o) {
   RunStatus status(o.status, *network, counters);  // the live status line (run_status.hpp)
   const std::unique_ptr<telemetry::LineTelemetry> telemetry =
       start_run_telemetry(o.telemetry, *network, impaired, clock, counters, &faults, [&waker] { waker.wake(); });
+  const std::unique_ptr<web::WebServer> page =
+      start_web(o.web, *network, clock, counters, &faults, "run", o.tap.empty() ? o.iface : o.tap, [&waker] { waker.wake(); });
   // Pinned last, so the threads started above (control, telemetry) stay off the serving CPU;
   // likewise the slice is the serving thread's alone.
   if (o.cpu >= 0) {
@@ -291,8 +296,14 @@ void run(RunOptions o) {
   }
   apply_time_slice(o);
   try {
-    if (telemetry) runtime::serve(*network, telemetry->link(), clock, stop, counters, status.wrap(&telemetry->service()));
-    else runtime::serve(*network, impaired, clock, stop, counters, status.wrap(control || faults.has_armed() ? &faults : nullptr));
+    // The fault control is polled with the telemetry's sampler when there is one; the page's
+    // requests need it polled too.
+    runtime::LoopService* base = telemetry ? &telemetry->service()
+                                 : control || faults.has_armed() || page ? static_cast<runtime::LoopService*>(&faults) : nullptr;
+    telemetry::LoopServices with_page(base, page ? &page->service() : nullptr);
+    runtime::LoopService* services = page ? &with_page : base;
+    if (telemetry) runtime::serve(*network, telemetry->link(), clock, stop, counters, status.wrap(services));
+    else runtime::serve(*network, impaired, clock, stop, counters, status.wrap(services));
   } catch (const link::LinkError& e) {  // the interface was removed while serving
     throw CliError(exit_code_for(e.kind()), e.what());
   }
@@ -362,6 +373,7 @@ void add_run_command(CLI::App& app) {
   add_status_options(cmd, o->status);
   cmd->add_option("--fault-seed", o->fault_seed, "Seed of the random wire faults (drop, corrupt, ...; default 1)");
   add_run_telemetry_options(cmd, o->telemetry);
+  add_web_option(cmd, o->web);
   cmd->add_option("--busy-poll-us", o->busy_poll_us,
                   "Raw socket: spin up to US microseconds for the next frame before sleeping (default 0: sleep at once)")
       ->check(CLI::Range(0L, 1'000'000L));

@@ -13,6 +13,9 @@
 
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/telemetry_command.hpp"
+#include "vdrive/cli/web_option.hpp"
+#include "vdrive/telemetry/loop_services.hpp"
+#include "vdrive/web/line_record.hpp"
 #include "vdrive/control/fault_service.hpp"
 #include "vdrive/cli/veth_pair.hpp"
 #include "vdrive/link/link_error.hpp"
@@ -32,29 +35,46 @@ struct ScenarioOptions {
   bool veth = false;          // real time: the built-in master over a veth pair made for the run
   std::string iface;          // real time: an external master on this interface
   RunTelemetryOptions telemetry;  // real time: DDS telemetry of the line (docs/telemetry.md)
+  std::string web;                // real time: the live page (docs/web.md)
 };
 
-// --telemetry: the line's DDS telemetry, with a fault service of its own for the control topic's
-// requests (the scenario's own faults go through the runner's injector; wire faults need the
-// runner's wire and are refused here).
-class TelemetryTap final : public scenario::LineTap {
+// What a real-time run serves beside the line: --telemetry (DDS) and --web (the live page), with a
+// fault service of their own for the requests they carry (the scenario's own faults go through the
+// runner's injector; wire faults need the runner's wire and are refused here).
+class ScenarioTaps final : public scenario::LineTap {
 public:
-  TelemetryTap(const RunTelemetryOptions& o, network::Network& network, link::Link& served, const Clock& clock,
+  ScenarioTaps(const ScenarioOptions& o, network::Network& network, link::Link& served, const Clock& clock,
                const runtime::LoopCounters& counters)
-      : faults_(network, nullptr, nullptr),
-        telemetry_(start_run_telemetry(o, network, served, clock, counters, &faults_, [] {})) {}
-  ~TelemetryTap() override {
+      : served_(served), faults_(network, nullptr, nullptr),
+        telemetry_(o.telemetry.enabled ? start_run_telemetry(o.telemetry, network, served, clock, counters, &faults_, [] {}) : nullptr),
+        page_(start_web(o.web, network, clock, counters, &faults_, "scenario", o.veth ? "veth" : o.iface, nullptr)),
+        services_(telemetry_ ? &telemetry_->service() : static_cast<runtime::LoopService*>(&faults_),
+                  page_ ? &page_->service() : nullptr) {}
+  ~ScenarioTaps() override {
     if (telemetry_) std::fprintf(stderr, "telemetry: %llu samples published, %llu dropped\n",
                                  static_cast<unsigned long long>(telemetry_->published()),
                                  static_cast<unsigned long long>(telemetry_->dropped()));
   }
-  link::Link& link() override { return telemetry_->link(); }
-  runtime::LoopService& service() override { return telemetry_->service(); }
+  link::Link& link() override { return telemetry_ ? telemetry_->link() : served_; }
+  runtime::LoopService& service() override { return services_; }
+  web::WebServer* page() { return page_.get(); }
 
 private:
+  link::Link& served_;
   control::FaultService faults_;
   std::unique_ptr<telemetry::LineTelemetry> telemetry_;
+  std::unique_ptr<web::WebServer> page_;
+  telemetry::LoopServices services_;
 };
+
+// The scenario as the page shows it before it starts: every expectation open.
+web::ScenarioView scenario_view(const scenario::Scenario& s) {
+  web::ScenarioView v;
+  v.name = s.name;
+  v.duration = s.duration;
+  for (const scenario::Expectation& e : s.expectations) v.expectations.push_back({e.line, e.name, "open", ""});
+  return v;
+}
 
 // OUT.csv -> OUT-<name>.csv when several scenarios share one option.
 std::string per_scenario(const std::string& path, const std::string& name, bool several) {
@@ -74,6 +94,8 @@ void run(const ScenarioOptions& o) {
   if (o.veth && !o.iface.empty()) throw CliError(kExitBadArguments, "--veth and --iface exclude each other");
   if (o.telemetry.enabled && !o.veth && o.iface.empty())
     throw CliError(kExitBadArguments, "--telemetry needs a real-time run (--veth or --iface): virtual time runs faster than any subscriber");
+  if (!o.web.empty() && !o.veth && o.iface.empty())
+    throw CliError(kExitBadArguments, "--web needs a real-time run (--veth or --iface): virtual time runs faster than any page");
   if (o.telemetry.enabled) telemetry_domain(o.telemetry.domain);  // a bad domain is named before anything starts
   // One pair for the whole run; names unique per process so parallel runs do not collide.
   std::unique_ptr<VethPair> veth;
@@ -92,23 +114,44 @@ void run(const ScenarioOptions& o) {
     } else if (!o.iface.empty()) {
       ro.line_interface = o.iface;
     }
-    if (o.telemetry.enabled) {
-      ro.line_tap = [&o](network::Network& network, link::Link& served, const Clock& clock, const runtime::LoopCounters& counters) {
-        return std::make_unique<TelemetryTap>(o.telemetry, network, served, clock, counters);
+    // The page of this run, once the runner has built the line (its log and verdicts go there too).
+    web::WebServer* page = nullptr;
+    if (o.telemetry.enabled || !o.web.empty()) {
+      ro.line_tap = [&o, &page, &s](network::Network& network, link::Link& served, const Clock& clock, const runtime::LoopCounters& counters) {
+        auto taps = std::make_unique<ScenarioTaps>(o, network, served, clock, counters);
+        page = taps->page();
+        if (page != nullptr) page->record().set_scenario(scenario_view(s));
+        return taps;
       };
     }
-    if (o.verbose) ro.log = [&](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
-    if (tty && !o.verbose) {
-      ro.progress = [&](Nanos t) {
+    ro.log = [&](const std::string& line) {
+      if (o.verbose) std::fprintf(stderr, "  %s\n", line.c_str());
+      if (page != nullptr) page->record().update_scenario([&](web::ScenarioView& v) { v.log.push_back(line); });
+    };
+    ro.decided = [&](const scenario::ExpectationResult& r) {
+      if (page == nullptr) return;
+      page->record().update_scenario([&](web::ScenarioView& v) {
+        for (web::ExpectationView& e : v.expectations) {
+          if (e.line != r.line || e.state != "open") continue;
+          e.state = r.passed ? "met" : "missed";
+          e.detail = r.message;
+          break;
+        }
+      });
+    };
+    ro.progress = [&](Nanos t) {
+      if (page != nullptr) page->record().update_scenario([&](web::ScenarioView& v) { v.elapsed = t; });
+      if (tty && !o.verbose) {
         std::fprintf(stderr, "\r  %s: %.0f of %.0f s simulated", s.name.c_str(), static_cast<double>(t) / 1e9,
                      static_cast<double>(s.duration) / 1e9);
         std::fflush(stderr);
-      };
-    }
+      }
+    };
     if (o.verbose) std::fprintf(stderr, "%s (%s)\n", s.name.c_str(), s.file.c_str());
     scenario::ScenarioResult r;
     try {
       r = scenario::run_scenario(s, ro);
+      page = nullptr;  // it ended with the run's line
     } catch (const link::LinkError& e) {
       throw CliError(kExitFailure, fmt::format("--{}: {}", o.veth ? "veth" : "iface", e.what()));
     } catch (const std::runtime_error& e) {  // a trace or capture file that cannot be written
@@ -154,6 +197,7 @@ void add_scenario_command(CLI::App& app) {
   cmd->add_option("--iface", o->iface,
                   "Real time: serve the line on this interface for an external master; only faults and checks run");
   add_run_telemetry_options(cmd, o->telemetry);
+  add_web_option(cmd, o->web);
   cmd->callback([o] { run(*o); });
 }
 

@@ -12,6 +12,42 @@ std::string fault_kind_names() {
   return names;
 }
 
+std::vector<FaultFieldInfo> fault_fields(FaultKind kind) {
+  using K = FaultKind;
+  const FaultKindInfo& i = info(kind);
+  std::vector<FaultFieldInfo> f;
+  if (i.layer != Layer::wire || kind == K::link_down)
+    f.push_back({"slave", "integer", true, "", "", kind == K::link_down ? "the slave whose port's cable breaks (1 = first)" : "the slave it acts on (1 = first)"});
+  if (kind == K::link_down) f.push_back({"port", "integer", false, "0", "", "0: the cable into the slave; 1-3: to the slaves behind it"});
+  if (!i.one_shot) f.push_back({"duration", "time", false, "0", "", "how long it lasts (0: until cleared)"});
+  switch (kind) {
+    case K::drop: case K::corrupt: case K::duplicate: case K::reorder: case K::delay:
+      f.push_back({"direction", "enum", false, "both", "both,to_slaves,to_master", "which frames it acts on"});
+      if (kind == K::delay) f.push_back({"delay", "time", true, "", "", "how long every frame is held"});
+      else f.push_back({"probability", "real", false, "1", "", "per frame, 0 to 1"});
+      break;
+    case K::lost_reply: case K::duplicate_reply:
+      f.push_back({"count", "integer", false, "1", "", "how many mailbox replies (1-1000)"});
+      break;
+    case K::sdo_abort:
+      f.push_back({"abort_code", "integer", false, "0x08000000", "", "the abort the next SDO request gets"});
+      break;
+    case K::alarm:
+      f.push_back({"code", "text", true, "", "", "an alarm code of the product (e.g. 16.0, E-161)"});
+      break;
+    case K::collision:
+      f.push_back({"position", "real", true, "", "", "the obstacle's load position (load units)"});
+      break;
+    case K::load_change:
+      f.push_back({"load_scale", "real", false, "1", "", "the load's inertia/mass factor (> 0)"});
+      f.push_back({"force", "real", false, "0", "", "added external load (N or N m)"});
+      break;
+    default:
+      break;
+  }
+  return f;
+}
+
 FaultSpec read_fault(FaultFieldSource& src, int max_slave) {
   using K = FaultKind;
   if (!src.has("kind")) src.missing("kind", "one of: " + fault_kind_names());

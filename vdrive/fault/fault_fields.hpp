@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "common/clock.hpp"
 #include "vdrive/fault/fault_spec.hpp"
@@ -33,6 +34,18 @@ public:
 // Reads `kind` and the fields that kind takes; the fields it does not take are left unread, for
 // the source's own check of unexpected fields. Slaves are numbered 1..max_slave.
 FaultSpec read_fault(FaultFieldSource& source, int max_slave);
+
+// One field a kind takes, as read_fault() reads it: for forms and API descriptions.
+struct FaultFieldInfo {
+  std::string_view name;
+  std::string_view type;           // "integer", "real", "time" ("250ms"), "text", "enum"
+  bool required = false;
+  std::string_view default_value;  // as a user would write it; empty when required
+  std::string_view choices;        // enum: "both,to_slaves,to_master"
+  std::string_view help;
+};
+// The fields of `kind`, `slave` and `duration` included where it takes them, in read_fault()'s order.
+std::vector<FaultFieldInfo> fault_fields(FaultKind kind);
 
 // "drop, corrupt, ..., brake_failure": the catalogue's names, for messages.
 std::string fault_kind_names();

@@ -80,6 +80,12 @@ struct ProductProfile {
       if (a.code == code) return &a;
     return nullptr;
   }
+  // The first alarm (manual order) that shows `error_code` in 603Fh, or nullptr.
+  const AlarmSpec* alarm_with_error_code(std::uint16_t error_code) const {
+    for (const AlarmSpec& a : alarms)
+      if (a.error_code == error_code) return &a;
+    return nullptr;
+  }
 };
 
 }  // namespace vdrive::profile

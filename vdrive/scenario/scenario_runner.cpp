@@ -100,7 +100,11 @@ public:
     } catch (const std::exception& e) {
       fail(fmt::format("the master: {}", e.what()));
     }
-    for (ExpectationCheck& c : checks_) c.finish(clock_->now(), events_);
+    for (ExpectationCheck& c : checks_) {
+      const bool open = !c.result().decided;
+      c.finish(clock_->now(), events_);
+      if (open && o_.decided) o_.decided(c.result());
+    }
     for (const ExpectationCheck& c : checks_) result_.expectations.push_back(c.result());
     for (ExpectationResult& r : step_results_) result_.expectations.push_back(std::move(r));
     if (!s_.expect_stop.empty()) {
@@ -459,7 +463,11 @@ private:
       }
     }
     if (same && (common == 2 || common == 4 || common == 8)) events_.all_in_state(static_cast<AlTarget>(common), now);
-    for (ExpectationCheck& c : checks_) c.check(now, probe(c.expectation().probe), events_);
+    for (ExpectationCheck& c : checks_) {
+      const bool open = !c.result().decided;
+      c.check(now, probe(c.expectation().probe), events_);
+      if (open && c.result().decided && o_.decided) o_.decided(c.result());
+    }
     if (trace_ && now >= next_trace_) {
       for (std::size_t i = 0; i < network_.size(); ++i) {
         TraceRow r;

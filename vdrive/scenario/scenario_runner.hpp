@@ -36,6 +36,7 @@ struct RunOptions {
   std::optional<std::uint64_t> seed;            // overrides the file's seed
   std::function<void(const std::string&)> log;  // each step, fault, state and simulated second
   std::function<void(Nanos)> progress;          // every simulated second
+  std::function<void(const ExpectationResult&)> decided;  // each expectation as it is decided
   LineTapFactory line_tap;                      // real time only: e.g. DDS telemetry (line_tap.hpp)
 };
 

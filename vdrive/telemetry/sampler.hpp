@@ -68,7 +68,8 @@ public:
 
 private:
   struct Drive {  // the objects of one drive, looked up once
-    drive::ObjectRef<std::int64_t> statusword, controlword, mode, position, velocity, torque, following_error, error_code;
+    drive::ObjectRef<std::int64_t> statusword, controlword, mode, position, velocity, torque, following_error, error_code, target_position,
+        digital_inputs, probe_status, probe_position1;
   };
   void sample(Nanos now);
   void sample_faults(Nanos now);

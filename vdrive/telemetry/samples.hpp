@@ -20,6 +20,12 @@ struct AxisSample {
   std::int16_t torque = 0;
   std::int32_t following_error = 0;
   std::uint16_t error_code = 0;
+  // Not on the DDS topic (the web page plots and shows them): 607Ah, 60FDh, 60B9h, 60BAh; 0 where
+  // the product has none.
+  std::int32_t target_position = 0;
+  std::uint32_t digital_inputs = 0;
+  std::uint16_t probe_status = 0;
+  std::int32_t probe_position1 = 0;
   double winding_c = 0.0, housing_c = 0.0;  // NaN without a plant
 };
 

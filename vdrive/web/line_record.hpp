@@ -1,0 +1,107 @@
+#pragma once
+// LineRecord: the web server's picture of the line, kept off the loop thread. The sampler's
+// samples come in through add() (the latest values of each axis, the last 12 s of plot points,
+// events), the loop's register copies through set_registers(), active faults through
+// set_faults(); the page and the API read it as JSON. Every sample and event gets a sequence
+// number, so a client asks for what is new since the last one it saw. Thread-safe (one mutex,
+// web threads only).
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "vdrive/control/control_request.hpp"
+#include "vdrive/telemetry/samples.hpp"
+#include "vdrive/web/scenario_view.hpp"
+#include "vdrive/web/slave_view.hpp"
+
+namespace vdrive::web {
+
+struct LineIdentity {
+  std::string source;     // "run", "demo", "scenario"
+  std::string interface;  // the served interface
+  std::string version;
+  bool token_required = false;
+};
+
+class LineRecord {
+public:
+  static constexpr std::size_t kPointsPerAxis = 600;  // 12 s at 50 Hz
+  static constexpr std::size_t kEvents = 2000;
+  static constexpr std::size_t kEmergencies = 16;     // per axis
+
+  LineRecord(std::vector<SlaveInfo> slaves, LineIdentity identity, Nanos origin);
+
+  void add(const telemetry::Sample& sample);
+  void set_registers(const std::vector<SlaveRegisters>& registers);
+  void set_faults(std::vector<control::FaultStatus> faults);
+  // An event that does not come from the sampler (an OD write, a plant change, a scenario step).
+  void note(int slave, const std::string& kind, std::int64_t value, std::int64_t previous, const std::string& text, Nanos time);
+  void set_scenario(const ScenarioView& scenario);
+  template <typename F> void update_scenario(F&& change) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!scenario_) scenario_.emplace();
+    change(*scenario_);
+  }
+
+  std::size_t size() const { return slaves_.size(); }
+  const SlaveInfo& slave(std::size_t i) const { return slaves_[i]; }
+  const LineIdentity& identity() const { return identity_; }
+
+  nlohmann::json line(Nanos now) const;
+  // Plot points with a sequence number above `since`, of one slave (from 1) or all (0).
+  nlohmann::json samples(std::uint64_t since, int slave) const;
+  // Events above `since`; `kind` empty and `slave` 0 take all.
+  nlohmann::json events(std::uint64_t since, const std::string& kind, int slave) const;
+  std::string events_csv(const std::string& kind, int slave) const;
+  std::uint64_t sample_seq() const;
+  std::uint64_t event_seq() const;
+
+private:
+  struct Point {
+    std::uint64_t seq = 0;
+    Nanos time = 0;
+    std::int32_t target_position = 0, position = 0, velocity = 0, following_error = 0;
+    std::int16_t torque = 0;
+  };
+  struct Event {
+    std::uint64_t seq = 0;
+    Nanos time = 0;
+    int slave = 0;
+    std::string kind;
+    std::int64_t value = 0, previous = 0;
+    std::string text;
+  };
+  struct Emergency {
+    Nanos time = 0;
+    std::uint16_t error_code = 0;
+    std::string text;
+  };
+  struct Axis {
+    std::optional<telemetry::AxisSample> latest;
+    std::deque<Point> points;
+    std::deque<Emergency> emergencies;
+  };
+  void push_event(Event e);
+  nlohmann::json slave_json(std::size_t i) const;
+  nlohmann::json drive_json(std::size_t i) const;
+  std::string alarm_text(std::size_t i, std::uint16_t error_code) const;
+
+  const std::vector<SlaveInfo> slaves_;
+  const LineIdentity identity_;
+  const Nanos origin_;
+  mutable std::mutex mutex_;
+  std::vector<Axis> axes_;
+  std::vector<SlaveRegisters> registers_;
+  telemetry::BusSample bus_{};
+  std::vector<control::FaultStatus> faults_;
+  std::deque<Event> events_;
+  std::optional<ScenarioView> scenario_;
+  std::uint64_t sample_seq_ = 0, event_seq_ = 0;
+};
+
+}  // namespace vdrive::web
