@@ -1,0 +1,81 @@
+#pragma once
+// A served line for the web tests: three drives (no master, so they stay in Init), their fault
+// control and a WebServer on an ephemeral loopback port, with a thread standing in for the event
+// loop (timers, the fault service and the page's service), and an HTTP client on it.
+#include <httplib.h>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "vdrive/control/fault_service.hpp"
+#include "vdrive/network/network.hpp"
+#include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/web/web_server.hpp"
+
+namespace vdrive::web::test {
+
+class WebLine {
+public:
+  explicit WebLine(std::string host = "127.0.0.1", std::vector<std::string> drives = {"a6b", "ds5c1", "ds1000a"})
+      : network_(drives, clock_), faults_(network_, nullptr, nullptr) {
+    WebServerOptions o;
+    o.address.host = std::move(host);
+    o.address.port = 0;
+    o.source = "test";
+    o.version = "test";
+    server_ = std::make_unique<WebServer>(network_, clock_, counters_, &faults_, o);
+    loop_ = std::thread([this] {
+      while (!stop_.load()) {
+        const Nanos now = clock_.now();
+        network_.tick(now);
+        faults_.poll(now);
+        server_->service().poll(now);
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+    });
+  }
+  ~WebLine() {
+    stop_.store(true);
+    loop_.join();
+    server_.reset();
+  }
+
+  WebServer& server() { return *server_; }
+  httplib::Client client() const {
+    httplib::Client c("127.0.0.1", server_->port());
+    c.set_read_timeout(5, 0);
+    return c;
+  }
+  // The JSON of a GET; {} when the request failed.
+  nlohmann::json get(const std::string& path) const {
+    auto r = client().Get(path.c_str());
+    return r ? nlohmann::json::parse(r->body) : nlohmann::json{};
+  }
+
+private:
+  MonotonicClock clock_;
+  network::Network network_;
+  runtime::LoopCounters counters_;
+  control::FaultService faults_;
+  std::unique_ptr<WebServer> server_;
+  std::atomic<bool> stop_{false};
+  std::thread loop_;
+};
+
+// Waits up to 3 s for `done`.
+template <typename F>
+bool eventually(F done) {
+  for (int i = 0; i < 300; ++i) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+}  // namespace vdrive::web::test
