@@ -20,6 +20,8 @@
 #   MASTER_OPTS="..."  extra master options (e.g. "--busy-poll-us 1000")
 #   RT_PRIORITY=N      run the master and every responder (KickCAT too) under `chrt -f N`
 #   OUT=DIR            keep the JSON results and logs in DIR (default: a temporary directory)
+#   WEB_PAGE=1         also measure `vdrive run --web` with the live page open in headless chromium
+#                      (label vdrive+page; docs/web.md), to see what an open page costs the line
 # Exit: 0 all measured, 1 a run failed, 77 not root.
 set -u
 
@@ -50,6 +52,15 @@ mkdir -p "$OUT"
 RESULTS="$OUT/turnaround.jsonl"
 : >"$RESULTS"
 SERVER_PID=""
+PAGE_PID=""
+
+stop_page() {
+  if [ -n "$PAGE_PID" ]; then
+    kill "$PAGE_PID" 2>/dev/null
+    wait "$PAGE_PID" 2>/dev/null
+    PAGE_PID=""
+  fi
+}
 
 stop_server() {
   if [ -n "$SERVER_PID" ]; then
@@ -59,6 +70,7 @@ stop_server() {
   fi
 }
 cleanup() {
+  stop_page
   stop_server
   ip link del "$M_IF" 2>/dev/null
   ip netns del "$NS" 2>/dev/null
@@ -72,6 +84,7 @@ ip link add "$M_IF" type veth peer name "$S_IF" || exit 1
 ip link set "$S_IF" netns "$NS"
 ip link set "$M_IF" up
 ip -n "$NS" link set "$S_IF" up
+ip -n "$NS" link set lo up
 
 # start_server NAME READY COMMAND...: a responder in the namespace (log: $OUT/NAME.log); waits
 # until its log matches READY (empty: a fixed moment), then one more second for its socket.
@@ -113,6 +126,18 @@ for n in $DRIVES; do
   start_server "vdrive-$n" "serving" "$VDRIVE" run --iface "$S_IF" --no-control $(drive_args "$n") ${VDRIVE_OPTS:-}
   measure vdrive "$n" op || status=1
   stop_server
+  if [ -n "${WEB_PAGE:-}" ]; then
+    # shellcheck disable=SC2046,SC2086
+    start_server "vdrive-page-$n" "serving" "$VDRIVE" run --iface "$S_IF" --no-control --web 127.0.0.1:8377 $(drive_args "$n") ${VDRIVE_OPTS:-}
+    # The page renders in a headless browser in the namespace for the whole measurement.
+    ip netns exec "$NS" chromium --headless=new --no-sandbox --disable-gpu --user-data-dir="$OUT/chromium" \
+      --remote-debugging-port=0 http://127.0.0.1:8377/ >"$OUT/chromium-$n.log" 2>&1 &
+    PAGE_PID=$!
+    sleep 3
+    measure vdrive+page "$n" op || status=1
+    stop_page
+    stop_server
+  fi
   image=$(grep "\"label\":\"vdrive/$n\"" "$RESULTS" | head -1 | sed -n 's/.*"image_bytes":\([0-9]*\).*/\1/p')
   # shellcheck disable=SC2086
   start_server "echo-$n" "" "$ECHO" --iface "$S_IF" ${ECHO_OPTS:-}
