@@ -311,3 +311,52 @@ TEST(WebApi, BeyondLoopbackChangesNeedTheToken) {
 
 }  // namespace
 }  // namespace vdrive::web::test
+
+namespace vdrive::web::test {
+namespace {
+
+// The served description and the server agree: every path and method it lists is answered by a
+// route of its own (never the catch-all "no endpoint"), and every answer is JSON or the page.
+TEST(WebApi, EveryDescribedEndpointExists) {
+  WebLine line;
+  const nlohmann::json api = line.get("/api/v1/openapi.json");
+  ASSERT_TRUE(api.contains("paths"));
+  std::size_t checked = 0;
+  for (const auto& [path, methods] : api["paths"].items()) {
+    std::string p = path;
+    for (const auto& [param, value] : std::vector<std::pair<std::string, std::string>>{
+             {"{pos}", "1"}, {"{index}", "0x6041"}, {"{sub}", "0"}, {"{id}", "99"}, {"{name}", "1.home"}}) {
+      if (const std::size_t at = p.find(param); at != std::string::npos) p.replace(at, param.size(), value);
+    }
+    for (const auto& [method, spec] : methods.items()) {
+      httplib::Client c = line.client();
+      if (method == "get" && p == "/api/v1/stream") {
+        std::string got;
+        (void)c.Get(p.c_str(), [&](const char* data, std::size_t n) {
+          got.append(data, n);
+          return false;  // one chunk is enough
+        });
+        EXPECT_EQ(got.rfind("event: update", 0), 0u) << p;
+        ++checked;
+        continue;
+      }
+      const auto send = [&]() -> httplib::Result {
+        if (method == "put") return c.Put(p.c_str(), R"({"value":1})", "application/json");
+        if (method == "post") return c.Post(p.c_str(), "{}", "application/json");
+        if (method == "delete") return c.Delete(p.c_str());
+        EXPECT_EQ(method, "get") << path;
+        return c.Get(p.c_str());
+      };
+      const httplib::Result r = send();
+      ASSERT_TRUE(r) << method << " " << p;
+      EXPECT_EQ(r->body.find("no endpoint"), std::string::npos) << method << " " << p << ": " << r->body;
+      EXPECT_EQ(r->body.find("no API endpoint"), std::string::npos) << method << " " << p << ": " << r->body;
+      EXPECT_LT(r->status, 500) << method << " " << p << ": " << r->body;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 20u);
+}
+
+}  // namespace
+}  // namespace vdrive::web::test
