@@ -99,3 +99,21 @@ TEST(Cia402Text, StatewordsAndModesInWords) {
 
 }  // namespace
 }  // namespace vdrive::web
+
+namespace vdrive::web {
+namespace {
+
+TEST(LoopCalls, AClosedLoopAnswersAtOnce) {
+  LoopCalls calls;
+  calls.close();
+  const auto start = std::chrono::steady_clock::now();
+  bool ran = false;
+  // Without close() this would wait the whole 30 s; the bound is far from any scheduling noise.
+  EXPECT_FALSE(calls.run([&](Nanos) { ran = true; }, 30'000'000'000));
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+  calls.poll(0);
+  EXPECT_FALSE(ran);
+}
+
+}  // namespace
+}  // namespace vdrive::web

@@ -20,6 +20,7 @@ void LoopCalls::poll(Nanos now) {
 }
 
 bool LoopCalls::run(Work work, Nanos timeout) {
+  if (closed_.load()) return false;
   auto job = std::make_shared<Job>();
   job->work = std::move(work);
   {
@@ -30,7 +31,7 @@ bool LoopCalls::run(Work work, Nanos timeout) {
   if (wake_) wake_();
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::nanoseconds(timeout);
   // Requests are rare and short: a short sleep between looks costs nothing the loop would notice.
-  while (std::chrono::steady_clock::now() < deadline) {
+  while (std::chrono::steady_clock::now() < deadline && !closed_.load()) {
     if (job->state.load(std::memory_order_acquire) == Job::done) return true;
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }

@@ -31,6 +31,8 @@ public:
   // Any thread: runs `work` on the loop thread and returns true once it has run; false if the
   // loop did not start it within `timeout` (it never will).
   bool run(Work work, Nanos timeout);
+  // Any thread, when the loop stops polling for good: waiting and later calls return false at once.
+  void close() { closed_.store(true); }
 
 private:
   struct Job {
@@ -39,6 +41,7 @@ private:
     std::atomic<int> state{queued};
   };
   std::function<void()> wake_;
+  std::atomic<bool> closed_{false};
   std::mutex producers_;  // callers only: the queue has one producer at a time
   runtime::SpscQueue<std::shared_ptr<Job>, 16> queue_;
 };

@@ -24,7 +24,10 @@ using json = nlohmann::json;
 using namespace std::chrono_literals;
 
 constexpr std::size_t kMaxBody = 64 * 1024;
-constexpr int kMaxStreams = 8;
+constexpr int kMaxStreams = 6;
+// Each live stream holds a thread for as long as it is open, and a browser keeps a few more
+// connections alive: enough threads that the API is still answered with every stream open.
+constexpr std::size_t kServerThreads = 16;
 constexpr auto kStreamPeriod = 40ms;  // 25 updates a second, paced by deadline
 
 std::string make_token() {
@@ -194,6 +197,7 @@ struct WebServer::Impl {
 
   void start() {
     server.set_payload_max_length(kMaxBody);
+    server.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
     server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) { return guard(req, res); });
     server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
       std::string what = "unknown error";
@@ -224,6 +228,7 @@ struct WebServer::Impl {
 
   void stop() {
     stopping.store(true);
+    calls.close();  // the loop may have stopped already: nobody would answer
     server.stop();
     if (server_thread.joinable()) server_thread.join();
     if (pump_thread.joinable()) pump_thread.join();

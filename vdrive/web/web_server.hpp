@@ -13,7 +13,7 @@
 // changes something needs the token made at start (Authorization: Bearer TOKEN; url() carries it
 // in the fragment for the page). Changes need Content-Type: application/json (a form on another
 // site cannot send one), a loopback server answers only Host names of this machine (no DNS
-// rebinding), bodies are limited to 64 KiB and the live streams to 8 at a time.
+// rebinding), bodies are limited to 64 KiB and the live streams to 6 at a time.
 #include <functional>
 #include <memory>
 #include <stdexcept>
