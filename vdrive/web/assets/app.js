@@ -4,9 +4,11 @@
 
 (() => {
   const API = '/api/v1';
-  const EVENT_KINDS = ['al_state', 'alarm_raised', 'alarm_cleared', 'fault_injected', 'fault_cleared',
+  const EVENT_KINDS = ['al_state', 'alarm_raised', 'alarm_cleared', 'fault_injected', 'fault_cleared', 'fault_refused',
     'plant_set', 'signal', 'od_write', 'od_abort', 'scenario'];
+  const TEXT_TYPES = /^(VS|US|VISIBLE_STRING|UNICODE_STRING)$/i;   // written as text; everything else as a number or hex
   const MAX_EVENTS = 2000;           // what the server keeps, so a reload shows the same log
+  const MAX_ROWS = 400;              // rows in the table: an alarm storm on 64 drives must not lay out thousands
   const KEEP_S = 21;                 // samples kept per axis: the longest plot window plus a margin
   const POLL_MS = 50;                // fallback polling when the stream cannot be used: 20 Hz
 
@@ -55,8 +57,16 @@
     for (const c of children) if (c != null) e.append(c);
     return e;
   }
+  // A panel's parts, looked up once: 64 drives x 20 updates a second would otherwise search the
+  // DOM thousands of times a second.
+  function part(root, sel) {
+    const cache = root.__parts || (root.__parts = {});
+    return cache[sel] || (cache[sel] = root.querySelector(sel));
+  }
   const hex = (v, digits = 4) => '0x' + (Number(v) >>> 0).toString(16).toUpperCase().padStart(digits, '0');
   const idx = (i, s) => (Number(i) >>> 0).toString(16).toUpperCase().padStart(4, '0') + 'h:' + (Number(s) >>> 0).toString(16).toUpperCase().padStart(2, '0');
+  // An alarm's code as the product prints it; a 603Fh value the alarm table lacks shows as hex.
+  const alarmCode = a => a.code || hex(a.error_code);
   const secs = ns => (Number(ns) / 1e9).toFixed(3);
   function duration(ns) {
     if (ns == null || ns < 0) return 'until cleared';
@@ -135,7 +145,7 @@
       opened = true;
       streamFailures = 0;
       setConn('live', 'live');
-      catchUp();   // whatever happened while the stream was down
+      // No catch-up request: a new stream's first update carries everything the server keeps.
     });
     source.addEventListener('update', ev => {
       let d;
@@ -173,13 +183,6 @@
     tick();
   }
 
-  async function catchUp() {
-    const [s, e] = await Promise.all([api('GET', '/samples?since=' + st.sampleSeq), api('GET', '/events?since=' + st.eventSeq)]);
-    if (s.ok) addSamples(s.data);
-    if (e.ok) addEvents(e.data.events || []);
-    scheduleDraw();
-  }
-
   function onUpdate(d) {
     st.updates++;
     if (d.line) renderLine(d.line);
@@ -195,14 +198,17 @@
     st.drawPending = true;
     requestAnimationFrame(() => {
       st.drawPending = false;
-      if (st.paused) return;
-      for (const ax of st.axes.values()) ax.draw();
+      if (!st.paused) for (const ax of st.axes.values()) ax.draw();
+      followEvents();
     });
   }
 
   // ---------------------------------------------------------------- the line
 
   function renderLine(line) {
+    // The line's clock going back is another vdrive behind the same address: start afresh.
+    if (st.lineTime != null && line.time_ns < st.lineTime - 1e9) restart();
+    st.lineTime = line.time_ns;
     st.tokenRequired = !!line.token_required;
     const tokenBadge = $('#token-state');
     tokenBadge.hidden = !(st.tokenRequired && !st.token);
@@ -227,6 +233,7 @@
   }
 
   function renderCounters(c) {
+    st.framesIn = c.frames_in;
     const node = $('#line-counters');
     const parts = [
       ['frames in', c.frames_in], ['out', c.frames_out], ['dropped', c.frames_dropped],
@@ -245,7 +252,8 @@
     const strip = $('#net-strip');
     strip.replaceChildren();
     // A long line wraps as small boxes, so a bench of 64 drives fits on the screen.
-    strip.classList.toggle('compact', slaves.length > 12);
+    st.compact = slaves.length > 12;
+    strip.classList.toggle('compact', st.compact);
     st.boxes.clear();
     for (const ax of st.axes.values()) ax.destroy();
     st.axes.clear();
@@ -272,7 +280,6 @@
     fillSlaveSelects(slaves);
     if (!st.boxes.has(st.selected)) st.selected = slaves.length ? slaves[0].position : 0;
     select(st.selected, false);
-    catchUp();
   }
 
   function fillSlaveSelects(slaves) {
@@ -302,20 +309,20 @@
   function renderSlaveBox(box, s) {
     setAttr(box, 'data-al-state', s.al_state);
     setAttr(box, 'data-al-error', !!s.al_error);
-    setText($('.sl-pos', box), s.position);
-    setText($('.sl-name', box), s.name || s.product);
-    setText($('.sl-product', box), `${s.product_name || s.product} · ${s.product}`);
+    setText(part(box, '.sl-pos'), s.position);
+    setText(part(box, '.sl-name'), s.name || s.product);
+    setText(part(box, '.sl-product'), `${s.product_name || s.product} · ${s.product}`);
     box.title = `vendor ${hex(s.vendor_id, 8)} product ${hex(s.product_code, 8)} revision ${hex(s.revision, 8)}`;
-    setText($('.sl-addr', box), `${s.address ? hex(s.address) : 'no address'}${s.alias ? ' alias ' + s.alias : ''}`);
-    const al = $('.sl-al-state', box);
-    setText(al, (s.al_state_name || s.al_state) + (s.al_error ? ' + error' : ''));
+    setText(part(box, '.sl-addr'), `${s.address ? hex(s.address) : 'no address'}${s.alias ? ' alias ' + s.alias : ''}`);
+    const al = part(box, '.sl-al-state');
+    setText(al, (s.al_state_name || s.al_state) + (s.al_error ? (st.compact ? '+E' : ' + error') : ''));
     al.className = 'sl-al-state ' + (s.al_error ? 'al-err' : 'al-' + s.al_state);
-    const status = $('.sl-al-status', box);
+    const status = part(box, '.sl-al-status');
     setText(status, s.al_status_code ? `${hex(s.al_status_code)} ${s.al_status_text}` : s.al_status_text || 'No error');
     status.classList.toggle('err', !!s.al_status_code);
-    setText($('.sl-drive', box), s.drive ? `${s.drive.state}${s.drive.alarm ? ' · ' + s.drive.alarm.code : ''}` : 'no drive');
+    setText(part(box, '.sl-drive'), s.drive ? `${s.drive.state}${s.drive.alarm ? ' · ' + alarmCode(s.drive.alarm) : ''}` : 'no drive');
     const rx = s.rx_errors || [], lost = s.lost_links || [];
-    const cnt = $('.sl-counters', box);
+    const cnt = part(box, '.sl-counters');
     const sig = rx.join('/') + '|' + lost.join('/');
     if (cnt.__sig !== sig) {
       cnt.__sig = sig;
@@ -323,11 +330,20 @@
       cnt.replaceChildren(el('span', { class: bad(rx), title: 'invalid frame counters per port (0300h)', text: 'rx ' + rx.join('/') }), ' ',
         el('span', { class: bad(lost), title: 'lost link counters per port (0310h)', text: 'll ' + lost.join('/') }));
     }
-    const dc = $('.sl-dc', box);
+    const dc = part(box, '.sl-dc');
     const d = s.dc || {};
     setText(dc, !d.enabled ? 'DC off' : `DC ${d.locked ? 'locked' : 'not locked'} ${d.system_time_difference_ns} ns`);
     dc.className = 'sl-dc small ' + (!d.enabled ? '' : d.locked ? 'locked' : 'unlocked');
     setAttr(box, 'data-dc-locked', !!(d.enabled && d.locked));
+  }
+
+  function restart() {
+    for (const ax of st.axes.values()) ax.reset();
+    st.sampleSeq = 0;
+    st.eventSeq = 0;
+    st.events = [];
+    st.latestT = 0;
+    $('#ev-list tbody').replaceChildren();
   }
 
   // ---------------------------------------------------------------- axes
@@ -361,8 +377,8 @@
       this.root.dataset.slave = s.position;
       this.root.id = 'axis-' + s.position;
       this.root.__axis = this;
-      $('.ax-alarm-code', this.root).id = 'alarm-' + s.position;
-      setText($('.ax-title', this.root), `${s.position} · ${s.name || s.product} · ${s.product_name || ''}`);
+      part(this.root, '.ax-alarm-code').id = 'alarm-' + s.position;
+      setText(part(this.root, '.ax-title'), `${s.position} · ${s.name || s.product} · ${s.product_name || ''}`);
       this.values = Object.fromEntries($$('[data-v]', this.root).map(b => [b.dataset.v, b]));
       this.data = Object.fromEntries(SERIES.map(([k]) => [k, []]));
       this.lastT = -Infinity;
@@ -371,15 +387,15 @@
       this.expanded = true;
       this.dirty = false;
       this.emcySig = '';
-      $('.ax-toggle', this.root).addEventListener('click', () => this.expand(!this.expanded));
-      $('.ax-title', this.root).addEventListener('click', () => select(this.pos, false));
+      part(this.root, '.ax-toggle').addEventListener('click', () => this.expand(!this.expanded));
+      part(this.root, '.ax-title').addEventListener('click', () => select(this.pos, false));
       visibility.observe(this.root);
     }
 
     expand(on) {
       this.expanded = on;
       this.root.classList.toggle('collapsed', !on);
-      $('.ax-toggle', this.root).setAttribute('aria-expanded', on);
+      part(this.root, '.ax-toggle').setAttribute('aria-expanded', on);
       if (on) { this.dirty = true; scheduleDraw(); }
     }
 
@@ -399,10 +415,10 @@
       this.renderAlarm(d.alarm);
       if (!this.visible && this.rendered) return;
       this.rendered = true;
-      const stEl = $('.ax-state', r);
+      const stEl = part(r, '.ax-state');
       setText(stEl, d.state);
       setAttr(stEl, 'data-pds', d.state);
-      setText($('.ax-mode', r), d.mode_name || 'mode ' + d.mode);
+      setText(part(r, '.ax-mode'), d.mode_name || 'mode ' + d.mode);
       for (const k of ['position', 'target_position', 'velocity', 'torque', 'following_error']) setText(this.values[k], d[k]);
       setText(this.values.statusword, hex(d.statusword));
       setText(this.values.controlword, hex(d.controlword));
@@ -413,17 +429,17 @@
 
     renderAlarm(a) {
       const r = this.root;
-      const alarm = $('.ax-alarm', r);
-      setText($('.ax-alarm-code', r), a ? a.code : '');
-      setText($('.ax-alarm-name', r), a ? `${a.name} (603Fh ${hex(a.error_code)})` : '');
+      const alarm = part(r, '.ax-alarm');
+      setText(part(r, '.ax-alarm-code'), a ? alarmCode(a) : '');
+      setText(part(r, '.ax-alarm-name'), a ? `${a.name} (603Fh ${hex(a.error_code)})` : '');
       alarm.classList.toggle('active', !!a && !a.warning);
       alarm.classList.toggle('warning', !!a && !!a.warning);
-      alarm.title = a ? (a.warning ? 'warning ' : 'alarm ') + a.code + ' ' + a.name : '';
-      setAttr(r, 'data-alarm-code', a ? a.code : '');
+      alarm.title = a ? (a.warning ? 'warning ' : 'alarm ') + alarmCode(a) + ' ' + a.name : '';
+      setAttr(r, 'data-alarm-code', a ? alarmCode(a) : '');
     }
 
     renderIo(d) {
-      const di = $('.ax-di', this.root);
+      const di = part(this.root, '.ax-di');
       const sig = String(d.digital_inputs);
       if (di.__sig !== sig) {
         di.__sig = sig;
@@ -432,7 +448,7 @@
           el('span', { title: `bit ${b}` }, el('span', { class: 'bit' + ((d.digital_inputs >>> b) & 1 ? ' on' : '') }), name + ' '));
         di.replaceChildren('DI ', ...bits, hex(d.digital_inputs, 8));
       }
-      setText($('.ax-probe', this.root), `probe ${hex(d.probe_status)} pos1 ${d.probe_position1}`);
+      setText(part(this.root, '.ax-probe'), `probe ${hex(d.probe_status)} pos1 ${d.probe_position1}`);
     }
 
     renderEmergencies(list) {
@@ -440,10 +456,10 @@
       const sig = list.length + ':' + (last ? last.time_ns : '');
       if (sig === this.emcySig) return;
       this.emcySig = sig;
-      const count = $('.ax-emcy-count', this.root);
+      const count = part(this.root, '.ax-emcy-count');
       setText(count, list.length ? `(${list.length}, last ${hex(last.error_code)})` : '(none)');
       count.classList.toggle('some', list.length > 0);
-      $('.ax-emcy ol', this.root).replaceChildren(...list.slice().reverse().map(e =>
+      part(this.root, '.ax-emcy ol').replaceChildren(...list.slice().reverse().map(e =>
         el('li', { text: `${secs(e.time_ns)} s  ${hex(e.error_code)}  ${e.text}` })));
     }
 
@@ -526,11 +542,8 @@
 
   function addSamples(samples) {
     if (!samples || !samples.axes) return;
-    if (typeof samples.seq === 'number') {
-      // A smaller sequence number is another vdrive behind the same address: start afresh.
-      if (samples.seq < st.sampleSeq) for (const ax of st.axes.values()) ax.reset();
-      st.sampleSeq = samples.seq;
-    }
+    // Stream updates and catch-up polls interleave, so an older seq is normal: keep the newest.
+    if (typeof samples.seq === 'number' && samples.seq > st.sampleSeq) st.sampleSeq = samples.seq;
     for (const a of samples.axes) {
       const ax = st.axes.get(a.slave);
       if (ax) ax.addSamples(a);
@@ -557,16 +570,32 @@
     if (drop > 0) st.events.splice(0, drop);
     const body = $('#ev-list tbody');
     const f = eventFilter();
-    for (const e of fresh) if (f(e)) body.append(eventRow(e));
-    while (body.rows.length > MAX_EVENTS) body.deleteRow(0);
-    setText($('#ev-count'), `(${st.events.length})`);
-    if ($('#ev-follow').checked) { const w = $('#ev-wrap'); w.scrollTop = w.scrollHeight; }
+    const rows = fresh.filter(f).slice(-MAX_ROWS).map(eventRow);
+    if (rows.length) {
+      body.append(...rows);
+      for (let n = body.rows.length - MAX_ROWS; n > 0; n--) body.deleteRow(0);
+      if ($('#ev-follow').checked) st.followEvents = true;
+    }
+    showEventCount(body.rows.length);
+  }
+
+  // Reading scrollHeight lays the page out at once: done in the animation frame, after the
+  // frame's own layout, never once per update.
+  function followEvents() {
+    if (!st.followEvents) return;
+    st.followEvents = false;
+    const w = $('#ev-wrap');
+    w.scrollTop = w.scrollHeight;
+  }
+
+  function showEventCount(shown) {
+    setText($('#ev-count'), shown < st.events.length ? `(${shown} shown of ${st.events.length})` : `(${st.events.length})`);
   }
 
   function eventRow(e) {
     const tr = el('tr', { 'data-kind': e.kind, 'data-slave': e.slave },
       el('td', { text: secs(e.time_ns) }), el('td', { text: e.slave || '' }), el('td', { text: e.kind }), el('td', { text: e.text }));
-    tr.title = `seq ${e.seq} value ${e.value} previous ${e.previous}`;
+    tr.title = `${e.text}\nseq ${e.seq}, value ${e.value}, previous ${e.previous}`;
     return tr;
   }
 
@@ -580,7 +609,9 @@
 
   function refilterEvents() {
     const f = eventFilter();
-    $('#ev-list tbody').replaceChildren(...st.events.filter(f).map(eventRow));
+    const rows = st.events.filter(f).slice(-MAX_ROWS).map(eventRow);
+    $('#ev-list tbody').replaceChildren(...rows);
+    showEventCount(rows.length);
     // The server filters the CSV by kind and slave; the text filter is the page's own.
     const q = new URLSearchParams();
     if ($('#ev-kind').value) q.set('kind', $('#ev-kind').value);
@@ -775,11 +806,15 @@
     body.replaceChildren(...rows);
   }
 
-  function showOdRefusal(r) {
+  // The drive's answer as a master would see it: the SDO abort code and its text; the server's
+  // message only when there is no abort (no such slave, a bad value).
+  function showOdRefusal(r, t, what) {
     const out = $('#od-result');
-    out.dataset.abortCode = (r.data && r.data.abort_code) || '';
-    const abort = r.data && r.data.abort_code ? `abort ${r.data.abort_code} ${r.data.abort_text || ''}\n` : '';
-    showResult(out, false, abort + errorText(r));
+    const d = r.data || {};
+    out.dataset.abortCode = d.abort_code || '';
+    showResult(out, false, d.abort_code
+      ? `${idx(t.index, t.sub)} ${what} refused: abort ${d.abort_code} ${d.abort_text || ''}`
+      : errorText(r));
   }
 
   async function odRead() {
@@ -787,7 +822,7 @@
     const out = $('#od-result');
     if (!t) { showResult(out, false, 'index: hex, e.g. 6041; sub: 0..255'); return; }
     const r = await api('GET', t.path);
-    if (!r.ok) { showOdRefusal(r); return; }
+    if (!r.ok) { showOdRefusal(r, t, 'read'); return; }
     const o = r.data;
     odTypes.set(`${o.index}:${o.subindex}`, o.type);
     out.dataset.abortCode = '';
@@ -808,10 +843,10 @@
       const type = odTypes.get(`${t.index}:${t.sub}`) || '';
       // Numbers for numeric objects (0x.. accepted), text for strings; the server names a mismatch.
       const numeric = /^[-+]?(0x[0-9a-f]+|\d+(\.\d*)?([eE][-+]?\d+)?)$/i.test(raw);
-      body = { value: !/STRING/i.test(type) && numeric ? Number(raw) : raw };
+      body = { value: !TEXT_TYPES.test(type) && numeric ? Number(raw) : raw };
     }
     const r = await api('PUT', t.path, body);
-    if (!r.ok) { showOdRefusal(r); return; }
+    if (!r.ok) { showOdRefusal(r, t, 'write'); return; }
     out.dataset.abortCode = '';
     showResult(out, true, `${idx(t.index, t.sub)} written; read back ${JSON.stringify(r.data.value)} · bytes ${r.data.hex}`);
   }
@@ -950,15 +985,19 @@
     for (const k of EVENT_KINDS) kinds.append(el('option', { value: k, text: k }));
   }
 
-  // The header shows how many updates per second arrive, the figure the page promises (>= 20).
+  // Once a second: the updates that arrived (the figure the page promises, >= 20) and the frames
+  // the line answered, shown at the master's end of the cable.
   function rateMeter() {
-    let last = st.updates;
+    let lastUpdates = st.updates;
+    let lastFrames = null;
     setInterval(() => {
-      const n = st.updates - last;
-      last = st.updates;
       const c = $('#conn');
-      if (c.dataset.state === 'live') c.title = `${n} updates/s`;
-      setText($('#net-iface') || c, $('#line-info').textContent || '');
+      c.title = `${st.updates - lastUpdates} updates/s`;
+      lastUpdates = st.updates;
+      const frames = st.framesIn;
+      const box = $('#net-iface');
+      if (box && frames != null && lastFrames != null) setText(box, `${Math.max(0, frames - lastFrames)} frames/s`);
+      lastFrames = frames;
     }, 1000);
   }
 
@@ -969,8 +1008,6 @@
     const line = await api('GET', '/line');
     if (line.ok) renderLine(line.data);
     else setConn('lost', errorText(line));
-    const ev = await api('GET', '/events?since=0');
-    if (ev.ok) addEvents(ev.data.events || []);
     loadFaultKinds();
     refreshScheduled();
     connect();
