@@ -117,6 +117,11 @@
     return { ok: res.ok, status: res.status, data };
   }
 
+  // Empty while a request is under way, so an old answer is never read as the new one.
+  function clearResult(node) {
+    node.classList.remove('ok', 'err');
+    node.textContent = '';
+  }
   function showResult(node, ok, text) {
     node.classList.toggle('ok', ok);
     node.classList.toggle('err', !ok);
@@ -700,6 +705,7 @@
     if (!body) { showResult(out, false, 'no fault kinds (is vdrive running?)'); return; }
     const btn = $('#fault-inject');
     btn.disabled = true;
+    clearResult(out);
     const r = await api('POST', '/faults', body);
     btn.disabled = false;
     if (r.status === 202) showResult(out, true, `${body.kind} scheduled in ${body.after} (ticket ${r.data.scheduled})`);
@@ -821,6 +827,7 @@
     const t = odTarget();
     const out = $('#od-result');
     if (!t) { showResult(out, false, 'index: hex, e.g. 6041; sub: 0..255'); return; }
+    clearResult(out);
     const r = await api('GET', t.path);
     if (!r.ok) { showOdRefusal(r, t, 'read'); return; }
     const o = r.data;
@@ -845,6 +852,7 @@
       const numeric = /^[-+]?(0x[0-9a-f]+|\d+(\.\d*)?([eE][-+]?\d+)?)$/i.test(raw);
       body = { value: !TEXT_TYPES.test(type) && numeric ? Number(raw) : raw };
     }
+    clearResult(out);
     const r = await api('PUT', t.path, body);
     if (!r.ok) { showOdRefusal(r, t, 'write'); return; }
     out.dataset.abortCode = '';
@@ -1003,6 +1011,11 @@
 
   async function start() {
     st.token = loadToken();
+    // The printed URL pasted into a tab that already shows the page changes only the fragment.
+    window.addEventListener('hashchange', () => {
+      st.token = loadToken();
+      $('#token-state').hidden = !(st.tokenRequired && !st.token);
+    });
     wire();
     rateMeter();
     const line = await api('GET', '/line');
