@@ -55,7 +55,7 @@ segment: {network: signal_bench.yaml}
 timeline:
   - {at: 1ms, signal: {name: dor, value: 1}}
 )";
-  EXPECT_EQ(load_error(text), kFile + ":4:30: timeline[0].signal.name: no signal \"dor\" (signals: door, x_home) and not "
+  EXPECT_EQ(load_error(text), kFile + ":4:30: timeline[0].signal.name: no signal 'dor' (signals: door, x_home) and not "
                                       "a point: 'dor': expected SLAVE INDEX:SUBINDEX (e.g. 'do 0x7000:1') or "
                                       "SLAVE.CONNECTION (e.g. 'x.home')");
 }

@@ -109,16 +109,7 @@ SignalAccess Network::resolve(const SignalPoint& point) {
 }
 
 SignalPoint Network::point_of(std::string_view name_or_point) const {
-  for (const NamedSignal& s : signals_)
-    if (s.name == name_or_point) return s.point;
-  try {
-    return parse_point(name_or_point);
-  } catch (const std::invalid_argument& e) {
-    std::string names;
-    for (const NamedSignal& s : signals_) names += (names.empty() ? "" : ", ") + s.name;
-    throw std::invalid_argument(fmt::format("no signal '{}' ({}) and not a point: {}", name_or_point,
-                                            names.empty() ? "the network names none" : "signals: " + names, e.what()));
-  }
+  return named_or_parsed_point(name_or_point, signals_, slave_names_);
 }
 
 SignalPoint Network::parse_point(std::string_view text) const { return parse_signal_point(text, slave_names_); }

@@ -73,4 +73,18 @@ std::string format_signal_point(const SignalPoint& point, std::span<const std::s
   return fmt::format("{} 0x{:04X}:{}", slave, point.index, point.subindex);
 }
 
+SignalPoint named_or_parsed_point(std::string_view text, std::span<const NamedSignal> signals,
+                                  std::span<const std::string> slave_names) {
+  for (const NamedSignal& s : signals)
+    if (s.name == text) return s.point;
+  try {
+    return parse_signal_point(text, slave_names);
+  } catch (const std::invalid_argument& e) {
+    std::string names;
+    for (const NamedSignal& s : signals) names += (names.empty() ? "" : ", ") + s.name;
+    throw std::invalid_argument(fmt::format("no signal '{}' ({}) and not a point: {}", text,
+                                            names.empty() ? "the network names none" : "signals: " + names, e.what()));
+  }
+}
+
 }  // namespace vdrive::network

@@ -47,4 +47,9 @@ struct NamedSignal {
   std::string origin;   // where it was given, for messages ("bench.yaml:14"); may be empty
 };
 
+// `text` as a named signal's point, else as a point (parse_signal_point). Throws
+// std::invalid_argument listing the names when it is neither.
+SignalPoint named_or_parsed_point(std::string_view text, std::span<const NamedSignal> signals,
+                                  std::span<const std::string> slave_names);
+
 }  // namespace vdrive::network

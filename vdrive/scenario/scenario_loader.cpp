@@ -171,15 +171,10 @@ struct Context {
 // exists is checked when the run builds the network.
 std::string signal_of(Map& m, std::string_view key, const Context& c) {
   const std::string s = m.string(key);
-  for (const network::NamedSignal& n : c.signals)
-    if (n.name == s) return s;
   try {
-    (void)network::parse_signal_point(s, c.slave_names);
+    (void)network::named_or_parsed_point(s, c.signals, c.slave_names);
   } catch (const std::invalid_argument& e) {
-    std::string names;
-    for (const network::NamedSignal& n : c.signals) names += (names.empty() ? "" : ", ") + n.name;
-    m.fail(key, fmt::format("no signal \"{}\" ({}) and not a point: {}", s,
-                            names.empty() ? "no network file names signals" : "signals: " + names, e.what()));
+    m.fail(key, e.what());
   }
   return s;
 }
