@@ -289,11 +289,13 @@
 
   function fillSlaveSelects(slaves) {
     const label = s => `${s.position} ${s.name || s.product}`;
-    for (const id of ['#fault-slave', '#od-slave', '#plant-slave']) {
+    // Only a drive moves a plant: couplers and terminals are not offered there.
+    const lists = { '#fault-slave': slaves, '#od-slave': slaves, '#plant-slave': slaves.filter(s => s.drive) };
+    for (const [id, list] of Object.entries(lists)) {
       const sel = $(id);
       const keep = sel.value;
-      sel.replaceChildren(...slaves.map(s => el('option', { value: s.position, text: label(s) })));
-      if (keep) sel.value = keep;
+      sel.replaceChildren(...list.map(s => el('option', { value: s.position, text: label(s) })));
+      if (keep && list.some(s => String(s.position) === keep)) sel.value = keep;
     }
     const ev = $('#ev-slave');
     const keep = ev.value;
@@ -306,7 +308,10 @@
     st.selected = pos;
     for (const [p, box] of st.boxes) box.classList.toggle('selected', p === pos);
     for (const [p, ax] of st.axes) ax.root.classList.toggle('selected', p === pos);
-    for (const id of ['#fault-slave', '#od-slave', '#plant-slave']) if (pos) $(id).value = pos;
+    for (const id of ['#fault-slave', '#od-slave', '#plant-slave']) {
+      const sel = $(id);
+      if (pos && [...sel.options].some(o => o.value === String(pos))) sel.value = pos;
+    }
     const ax = st.axes.get(pos);
     if (scroll && ax) ax.root.scrollIntoView({ block: 'nearest', behavior: 'smooth' });
   }
