@@ -36,7 +36,7 @@
 
   // ---------------------------------------------------------------- helpers
 
-  // Writes only when the text changes: with 64 drives at 20 Hz most values stay the same, and
+  // Writes only when the text changes: with 64 drives at 25 updates a second most values stay the same, and
   // untouched nodes cost the browser no layout.
   function setText(el, text) {
     text = String(text);
@@ -57,7 +57,7 @@
     for (const c of children) if (c != null) e.append(c);
     return e;
   }
-  // A panel's parts, looked up once: 64 drives x 20 updates a second would otherwise search the
+  // A panel's parts, looked up once: 64 drives x 25 updates a second would otherwise search the
   // DOM thousands of times a second.
   function part(root, sel) {
     const cache = root.__parts || (root.__parts = {});
@@ -174,6 +174,7 @@
     if (source) { source.close(); source = null; }
     setConn('live', 'polling');
     const tick = async () => {
+      const begun = performance.now();
       const [l, s, e] = await Promise.all([api('GET', '/line'), api('GET', '/samples?since=' + st.sampleSeq),
         api('GET', '/events?since=' + st.eventSeq)]);
       if (l.ok) {
@@ -182,7 +183,7 @@
       } else {
         setConn('lost', 'disconnected');
       }
-      pollTimer = setTimeout(tick, POLL_MS);
+      pollTimer = setTimeout(tick, Math.max(0, POLL_MS - (performance.now() - begun)));   // a period, not a pause
     };
     clearTimeout(pollTimer);
     tick();
