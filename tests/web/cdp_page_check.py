@@ -229,7 +229,7 @@ def inject_fault(cdp, kind, slave, expect_alarm, timeout):
                error_code: Number(a.dataset.errorCode), state: a.dataset.pds,
                visible: getComputedStyle(a.querySelector('[data-role=alarm]')).visibility === 'visible'}};
     }})()""")
-    print(f"page: slave {slave} alarm {alarm['text']} (603Fh {alarm['error_code']:#06x}), CiA 402 state {alarm['state']}")
+    print(f"page: slave {slave} shows {alarm['text']}, CiA 402 state {alarm['state']}")
     if not alarm["visible"]:
         raise CheckFailed(f"slave {slave}'s alarm {code} is not visible")
     if alarm["error_code"] == 0:
