@@ -136,11 +136,14 @@ void SineProgram::inputs(std::span<std::uint8_t> image) {
     r.statusword = c.status_value;
     r.error_code = image_get<std::uint16_t>(image, c.error);
     const bool enabled = (c.status_value & 0x006F) == 0x0027 && image_get<std::int8_t>(image, c.mode_display) == kCsp;
-    if (enabled && c.enabled_at < 0) {
+    // Enabled for the first time, or again after a fault the program reset: the motion starts
+    // (again) from where the axis is, so a re-enabled drive gets no step.
+    if (enabled && !c.enabled) {
       c.enabled_at = c.now;
       c.start = c.position;
       r.enabled = true;
     }
+    c.enabled = enabled;
     if (r.enabled && (c.status_value & 0x0008)) r.faulted = true;
     if (c.enabled_at >= 0 && c.now - c.enabled_at > options_.settle && !c.finished) {
       const std::int64_t fe = std::abs(static_cast<std::int64_t>(image_get<std::int32_t>(image, c.following)));

@@ -72,7 +72,8 @@ private:
     std::int32_t start = 0;
     std::int32_t position = 0;
     std::uint16_t status_value = 0;
-    Nanos enabled_at = -1;
+    Nanos enabled_at = -1;      // when the motion (re)started
+    bool enabled = false;       // Operation enabled in csp at the last cycle
     Nanos now = 0;
     bool finished = false;
   };

@@ -10,6 +10,7 @@ namespace vdrive::master {
 namespace {
 constexpr std::uint16_t kSmOutputParameter = 0x1C32, kSmInputParameter = 0x1C33;
 constexpr std::uint16_t kSyncTypeDcSync0 = 2;
+constexpr std::uint8_t kAlAcknowledge = 0x10;  // AL control bit 4: Error Ind Ack (ETG.1000.6)
 
 std::string al_summary(Master& master) {
   std::string text;
@@ -100,8 +101,22 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
   result.reached_op = true;
   say("Op");
   task.reset_stats();
+  bool recovering = false;
   task.run(options.cycles, [&] {
-    if (!task.all_in(AlState::Op)) ++result.left_op;
+    if (!task.all_in(AlState::Op)) {
+      ++result.left_op;
+      if (options.recover && !recovering) {
+        // Op with the Error Ind Ack bit: the slave clears its error and goes back to Op.
+        task.request_state(static_cast<AlState>(static_cast<std::uint8_t>(AlState::Op) | kAlAcknowledge));
+        recovering = true;
+        ++result.recoveries;
+        say(fmt::format("left Op:{}; acknowledging and requesting Op", al_summary(master)));
+      }
+    } else if (recovering) {
+      task.request_state(static_cast<AlState>(0));  // back in Op: stop writing AL control
+      recovering = false;
+      say("back in Op");
+    }
     return options.done && options.done();
   });
   result.stats = task.stats();

@@ -32,6 +32,9 @@ struct OpRunOptions {
   std::uint64_t safeop_cycles = 100;       // cycles sent in Safe-Op before Op is requested
   Nanos op_timeout = 5'000'000'000;        // until every slave reports Op
   bool back_to_init = true;
+  // In Op, as a PLC does: a slave that leaves Op (an AL error such as an SM watchdog after a stall
+  // or an injected fault) is acknowledged and asked for Op again, every cycle until it is back.
+  bool recover = false;
   // The application: `preop` runs once in Pre-Op before the process data is configured (start-up
   // SDOs, PDO remapping); `outputs`/`inputs` run in every cycle from Safe-Op on, around the frame,
   // with the whole process image. The cycles in Op end early when `done` returns true.
@@ -48,6 +51,7 @@ struct OpRunResult {
   std::uint16_t reference_station = 0;
   std::uint64_t sync0_start = 0;
   std::uint64_t left_op = 0;               // cycles whose AL status was not all-Op
+  std::uint64_t recoveries = 0;            // times the line left Op and was asked back (recover)
   std::vector<std::string> notes;          // fallbacks and skipped steps, one line each
   std::string error;                       // why Op was not reached (empty when it was)
   bool ok() const { return reached_op && stats.wrong_wkc == 0 && left_op == 0 && stats.cycles > 0; }

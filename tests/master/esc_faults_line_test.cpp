@@ -82,6 +82,37 @@ TEST_F(EscFaultsInOp, WkcErrorCostsTheCyclicFrameItsShareOfTheWorkingCounter) {
   EXPECT_EQ(r.stats.last_wkc, master.slaves()[0].process_data.expected_wkc());
 }
 
+TEST_F(EscFaultsInOp, WithRecoverTheMasterTakesTheLineBackToOpOnceTheCauseIsGone) {
+  OpRunOptions o;
+  o.cycle = 1 * kMs;
+  o.cycles = 600;
+  o.drift_frames = 200;
+  o.mailbox_timeout = 20 * kMs;
+  o.back_to_init = false;
+  o.recover = true;
+  int cycles = 0;
+  o.done = [&] {
+    ++cycles;
+    if (cycles == 100) line.network().esc(1).set_faults({.pd_watchdog_expired = true});
+    if (cycles == 200) line.network().esc(1).set_faults({});  // the master retried meanwhile, refused
+    return false;
+  };
+  const OpRunResult r = run_to_op(master, o);
+  ASSERT_TRUE(r.reached_op) << r.error;
+  EXPECT_GE(r.recoveries, 1u);
+  EXPECT_GT(r.left_op, 0u) << "the watchdog took slave 2 out of Op";
+  EXPECT_EQ(esc_u16(0, ecat::reg::kAlStatus), 0x0008);
+  EXPECT_EQ(esc_u16(1, ecat::reg::kAlStatus), 0x0008) << "acknowledged and back in Op";
+}
+
+TEST_F(EscFaultsInOp, WithoutRecoverTheLineStaysOutOfOp) {
+  const OpRunResult r = run(1, [&] { line.network().esc(1).set_faults({.pd_watchdog_expired = true}); });
+  ASSERT_TRUE(r.reached_op) << r.error;
+  line.network().esc(1).set_faults({});
+  EXPECT_EQ(r.recoveries, 0u);
+  EXPECT_EQ(esc_u16(1, ecat::reg::kAlStatus), 0x0014);
+}
+
 TEST(CableFaultOnLine, BreakAfterSlave1AndItsRepairShowInTheBroadcastWorkingCounter) {
   test::VirtualLine line({"a6b", "ds5c1", "ds1000a"});
   Master master{line, line.clock()};

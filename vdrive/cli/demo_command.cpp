@@ -208,9 +208,14 @@ void run_demo(const DemoOptions& opt) {
       if (moving) {
         fmt::print("the drives keep moving until Ctrl-C\n");
         std::fflush(stdout);
-        // Only Ctrl-C ends it: a drive that faults stays in Fault on the line (and on the page).
+        // Only Ctrl-C ends it. As a PLC would, the master takes a slave that leaves Op (a fault from
+        // the page, a watchdog after a host stall) back to Op, and the sine program resets a faulted
+        // drive and moves it again once its cause is gone. A lost frame is given up after 20 ms,
+        // well inside the SM watchdog, so one loss does not take the line out of Op.
         op.cycles = std::numeric_limits<std::uint64_t>::max();
         op.done = [] { return g_stop.load(); };
+        op.recover = true;
+        op.reply_timeout = 20'000'000;
       }
       const master::OpRunResult r = master::run_to_op(m, op, [](const std::string& line) { fmt::print("  {}\n", line); });
       for (const std::string& note : r.notes) fmt::print("  note: {}\n", note);
