@@ -360,3 +360,32 @@ TEST(WebApi, EveryDescribedEndpointExists) {
 
 }  // namespace
 }  // namespace vdrive::web::test
+
+namespace vdrive::web::test {
+namespace {
+
+TEST(WebApi, AlarmsAreTheProductsTable) {
+  WebLine line;
+  const nlohmann::json a6b = line.get("/api/v1/slaves/1/alarms");
+  bool overload = false;
+  for (const nlohmann::json& a : a6b["alarms"]) overload = overload || (a["code"] == "16.0" && a["error_code"] == 0xFF10);
+  EXPECT_TRUE(overload);
+  const nlohmann::json ds5c1 = line.get("/api/v1/slaves/2/alarms");
+  ASSERT_FALSE(ds5c1["alarms"].empty());
+  EXPECT_EQ(ds5c1["alarms"][0]["code"].get<std::string>().rfind("E-", 0), 0u);
+  auto r = line.client().Get("/api/v1/slaves/0/alarms");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 404);
+}
+
+TEST(WebApi, EachSlaveSaysWhereItIsCabled) {
+  WebLine line;
+  const nlohmann::json j = line.get("/api/v1/line");
+  EXPECT_EQ(j["slaves"][0]["parent"], 0);  // the master
+  EXPECT_EQ(j["slaves"][1]["parent"], 1);
+  EXPECT_EQ(j["slaves"][1]["parent_port"], 1);
+  EXPECT_EQ(j["slaves"][2]["parent"], 2);
+}
+
+}  // namespace
+}  // namespace vdrive::web::test

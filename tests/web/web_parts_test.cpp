@@ -117,3 +117,28 @@ TEST(LoopCalls, AClosedLoopAnswersAtOnce) {
 
 }  // namespace
 }  // namespace vdrive::web
+
+namespace vdrive::web {
+namespace {
+
+TEST(LineRecord, AScenarioIsDecidedOnceEveryExpectationIs) {
+  LineRecord record({}, LineIdentity{}, 0);
+  ScenarioView v;
+  v.name = "s";
+  v.duration = 3'000'000'000;
+  v.started = 1'000'000'000;
+  v.expectations = {{1, "a", "open", ""}, {2, "b", "open", ""}};
+  record.set_scenario(v);
+  nlohmann::json s = record.line(1'500'000'000)["scenario"];
+  EXPECT_EQ(s["state"], "running");
+  EXPECT_EQ(s["elapsed_ns"], 500'000'000) << "from the line's clock, not only the runner's whole seconds";
+  record.update_scenario([](ScenarioView& x) { x.expectations[0].state = "met"; });
+  EXPECT_EQ(record.line(2'000'000'000)["scenario"]["state"], "running");
+  record.update_scenario([](ScenarioView& x) { x.expectations[1].state = "missed"; });
+  s = record.line(9'000'000'000)["scenario"];
+  EXPECT_EQ(s["state"], "failed");
+  EXPECT_EQ(s["elapsed_ns"], 3'000'000'000) << "never past the duration";
+}
+
+}  // namespace
+}  // namespace vdrive::web

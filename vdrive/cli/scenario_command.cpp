@@ -120,7 +120,11 @@ void run(const ScenarioOptions& o) {
       ro.line_tap = [&o, &page, &s](network::Network& network, link::Link& served, const Clock& clock, const runtime::LoopCounters& counters) {
         auto taps = std::make_unique<ScenarioTaps>(o, network, served, clock, counters);
         page = taps->page();
-        if (page != nullptr) page->record().set_scenario(scenario_view(s));
+        if (page != nullptr) {
+          web::ScenarioView view = scenario_view(s);
+          view.started = clock.now();
+          page->record().set_scenario(view);
+        }
         return taps;
       };
     }

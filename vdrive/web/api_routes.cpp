@@ -15,6 +15,7 @@
 #include "vdrive/control/signal_requests.hpp"
 #include "vdrive/fault/fault_fields.hpp"
 #include "vdrive/network/network.hpp"
+#include "vdrive/profile/product_profile.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/web/od_api.hpp"
 #include "vdrive/web/web_context.hpp"
@@ -108,6 +109,20 @@ void add_line_routes(httplib::Server& s, WebContext& c) {
   };
   s.Get("/api/v1/events", [events](const httplib::Request& req, httplib::Response& res) { events(req, res, false); });
   s.Get("/api/v1/events.csv", [events](const httplib::Request& req, httplib::Response& res) { events(req, res, true); });
+}
+
+// The product's alarm table, for the `code` of an alarm fault and for reading alarm codes.
+void add_alarm_routes(httplib::Server& s, WebContext& c) {
+  s.Get(R"(/api/v1/slaves/([^/]+)/alarms)", [&c](const httplib::Request& req, httplib::Response& res) {
+    const auto slave = slave_of(c, req.matches[1]);
+    if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
+    json alarms = json::array();
+    const profile::ProductProfile* p = c.record.slave(std::get<std::size_t>(slave)).profile;
+    for (const profile::AlarmSpec& a : p->alarms)
+      alarms.push_back({{"code", a.code}, {"name", a.name_en.empty() ? a.name : a.name_en}, {"error_code", a.error_code},
+                        {"al_status_code", a.al_status_code}, {"warning", a.warning}, {"clearable", a.clearable}});
+    send(res, {200, {{"alarms", std::move(alarms)}}});
+  });
 }
 
 void add_object_routes(httplib::Server& s, WebContext& c) {
@@ -342,6 +357,7 @@ control::ControlReply WebContext::fault_call(const control::ControlRequest& requ
 void add_api_routes(httplib::Server& server, WebContext& context) {
   add_line_routes(server, context);
   add_object_routes(server, context);
+  add_alarm_routes(server, context);
   add_fault_routes(server, context);
   add_plant_and_signal_routes(server, context);
 }

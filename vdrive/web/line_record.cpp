@@ -147,7 +147,7 @@ json LineRecord::slave_json(std::size_t i) const {
             {"al_state_name", al_state_text(r.al_status)}, {"al_error", error},
             {"al_status_code", r.al_status_code},
             {"al_status_text", error || r.al_status_code != 0 ? std::string(master::al_status_code_text(r.al_status_code)) : "No error"},
-            {"rx_errors", r.rx_errors}, {"lost_links", r.lost_links}};
+            {"rx_errors", r.rx_errors}, {"lost_links", r.lost_links}, {"parent", s.parent}, {"parent_port", s.parent_port}};
   j["dc"] = {{"enabled", r.dc_active}, {"system_time_difference_ns", r.system_time_difference},
              {"locked", r.dc_active && std::llabs(r.system_time_difference) < kDcLockNs}};
   j["drive"] = drive_json(i);
@@ -177,7 +177,16 @@ json LineRecord::line(Nanos now) const {
     json expectations = json::array();
     for (const ExpectationView& e : scenario_->expectations)
       expectations.push_back({{"line", e.line}, {"text", e.name}, {"state", e.state}, {"detail", e.detail}});
-    j["scenario"] = {{"name", scenario_->name}, {"state", scenario_->state}, {"elapsed_ns", scenario_->elapsed},
+    // Elapsed on the line's clock from the start (the runner reports whole seconds only); the verdict
+    // once every expectation is decided (the page ends with the run, so it would never see it).
+    const Nanos elapsed = scenario_->started > 0 ? std::max(scenario_->elapsed, now - scenario_->started) : scenario_->elapsed;
+    std::string state = scenario_->state;
+    const bool open = std::any_of(scenario_->expectations.begin(), scenario_->expectations.end(),
+                                  [](const ExpectationView& e) { return e.state == "open"; });
+    if (state == "running" && !open && !scenario_->expectations.empty())
+      state = std::all_of(scenario_->expectations.begin(), scenario_->expectations.end(),
+                          [](const ExpectationView& e) { return e.state == "met"; }) ? "passed" : "failed";
+    j["scenario"] = {{"name", scenario_->name}, {"state", state}, {"elapsed_ns", scenario_->duration > 0 ? std::min(elapsed, scenario_->duration) : elapsed},
                      {"duration_ns", scenario_->duration}, {"log", scenario_->log}, {"expectations", std::move(expectations)}};
   }
   return j;

@@ -19,6 +19,7 @@ struct ScenarioView {
   std::string name;
   std::string state = "running";  // running, passed, failed, error
   Nanos elapsed = 0, duration = 0;
+  Nanos started = 0;  // on the line's clock; 0: unknown
   std::vector<std::string> log;
   std::vector<ExpectationView> expectations;
 };

@@ -18,6 +18,11 @@ std::vector<SlaveInfo> slave_infos(network::Network& network) {
     s.product_code = p.identity.product_code;
     s.revision = p.identity.revision;
     s.drive = network.firmware(i).drive() != nullptr;
+    const network::Uplink& up = network.segment().uplink(i);
+    if (up.parent != network::Uplink::kMaster) {
+      s.parent = up.parent + 1;
+      s.parent_port = up.port;
+    }
     s.profile = &p;
     infos.push_back(std::move(s));
   }

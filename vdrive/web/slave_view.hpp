@@ -20,6 +20,8 @@ struct SlaveInfo {
   std::string product, product_name;
   std::uint32_t vendor_id = 0, product_code = 0, revision = 0;
   bool drive = false;
+  int parent = 0;       // the slave (from 1) whose port this one's port 0 is cabled to; 0: the master
+  int parent_port = 0;  // that slave's port (1-3); 0 for the master
   const profile::ProductProfile* profile = nullptr;  // immutable while the network lives
 };
 

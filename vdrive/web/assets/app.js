@@ -268,8 +268,15 @@
     strip.append(el('div', { class: 'net-master', title: 'the master, on the other end of the cable' },
       el('div', { class: 'sl-head', text: 'master' }), el('div', { class: 'sl-product', id: 'net-iface' })));
     const tpl = $('#tpl-slave');
+    let previous = 0;
     for (const s of slaves) {
-      strip.append(el('div', { class: 'net-cable' }));
+      // In a line each slave hangs off the one before; a tree's branch says which port feeds it.
+      const branch = s.parent !== undefined && s.parent !== previous;
+      strip.append(branch
+        ? el('div', { class: 'net-cable branch', title: `cabled to port ${s.parent_port} of slave ${s.parent}`,
+                      text: `${s.parent}:${s.parent_port}` })
+        : el('div', { class: 'net-cable' }));
+      previous = s.position;
       const box = tpl.content.firstElementChild.cloneNode(true);
       box.dataset.slave = s.position;
       box.id = 'slave-' + s.position;
@@ -677,11 +684,25 @@
           input.setAttribute('list', id + '-choices');
         }
       }
+      // The alarm fault's code is one of the slave's product's alarms: offer its table.
+      if (f.name === 'code' && k.kind === 'alarm') fillAlarmChoices(box, input, id);
       input.dataset.field = f.name;
       input.dataset.type = f.type;
       box.append(label, input);
       if (f.help) box.append(el('div', { class: 'help', text: f.help }));
     }
+  }
+
+  async function fillAlarmChoices(box, input, id) {
+    const pos = Number($('#fault-slave').value);
+    if (!pos) return;
+    const r = await api('GET', `/slaves/${pos}/alarms`);
+    if (!r.ok) return;
+    const list = el('datalist', { id: id + '-choices' },
+      ...r.data.alarms.map(a => el('option', { value: a.code, text: `${a.code} ${a.name}` })));
+    box.append(list);
+    input.setAttribute('list', id + '-choices');
+    input.placeholder = r.data.alarms.length ? r.data.alarms[0].code : '';
   }
 
   // Integers go as JSON numbers when decimal; "0x06020000" goes as text, which the server reads
@@ -961,6 +982,7 @@
       });
     }
     $('#fault-kind').addEventListener('change', renderFaultFields);
+    $('#fault-slave').addEventListener('change', () => { if (currentKind()?.kind === 'alarm') renderFaultFields(); });
     $('#fault-form').addEventListener('submit', injectFault);
     $('#fault-after').addEventListener('focus', () => { $('#fault-later').checked = true; });
     $('#fault-clear-all').addEventListener('click', clearAllFaults);
