@@ -60,6 +60,7 @@ DriveEngine::DriveEngine(const profile::ProductProfile& profile, od::ObjectStore
       axis_(axis),
       ctx_{profile, objects, units_},
       obj_(objects),
+      vendor_monitors_(objects, profile.drive.monitors),
       pds_(ctx_),
       stop_(ctx_),
       selector_(ctx_),
@@ -439,6 +440,14 @@ void DriveEngine::publish(const AxisSample& s, const plant::AxisFeedback& fb) {
   obj_.velocity_demand.set(saturate_i32(demand_velocity_));
   obj_.torque_demand.set(saturate_i16(last_.kind == Setpoint::Kind::Torque ? last_.torque : s.torque));
   obj_.following_error.set(saturate_i32(demand_position_ - s.position));
+  if (vendor_monitors_.empty()) return;
+  MonitorValues v;
+  v.motor_speed_rpm = units_.user_to_rpm(s.velocity);
+  v.speed_demand_rpm = units_.user_to_rpm(demand_velocity_);
+  v.torque_demand_percent = static_cast<double>(obj_.torque_demand.get()) / 10.0;
+  v.torque_actual_percent = s.torque / 10.0;
+  v.motor_current_a = fb.current_a;   // signed with the torque (a servo's q-axis current)
+  vendor_monitors_.publish(v);
 }
 
 }  // namespace vdrive::drive

@@ -33,6 +33,7 @@
 #include "vdrive/drive/pds/pds_machine.hpp"
 #include "vdrive/drive/pds/stop_sequence.hpp"
 #include "vdrive/drive/unit_scaling.hpp"
+#include "vdrive/drive/vendor_monitors.hpp"
 
 namespace vdrive::drive {
 
@@ -114,6 +115,7 @@ private:
   UnitScaling units_;
   DriveContext ctx_;
   AxisObjects obj_;
+  VendorMonitors vendor_monitors_;
   PdsMachine pds_;
   StopSequence stop_;
   ModeSelector selector_;

@@ -102,6 +102,24 @@ struct ProfilePositionSpec {
   bool halt_discards_on_immediate = false;  // halt + bit 5 + new set-point drops the target and holds (DS1000A-EC L2111-L2117)
 };
 
+// A live quantity of the drive that a vendor monitor object shows (profile `drive.monitors`).
+enum class MonitorQuantity : std::uint8_t {
+  MotorSpeedRpm,        // actual motor speed (606Ch as motor r/min)
+  SpeedDemandRpm,       // velocity demand (606Bh as motor r/min)
+  TorqueDemandPercent,  // 6074h in % of rated torque
+  TorqueActualPercent,  // 6077h in % of rated torque
+  MotorCurrentA,        // torque-producing motor current, A (signed)
+};
+
+// One monitor object the drive writes every control step: raw = quantity / scale, rounded and cut
+// to the object's width (DS5C1 U0-00 = 3000h, r/min: scale 1; U0-18 = 3012h, 0.01 A: scale 0.01).
+struct MonitorSpec {
+  std::uint16_t index = 0;
+  std::uint8_t subindex = 0;
+  MonitorQuantity quantity = MonitorQuantity::MotorSpeedRpm;
+  double scale = 1.0;
+};
+
 struct DriveSpec {
   std::uint32_t control_period_ns = 125000;           // internal position/velocity loop period
   bool stepper = false;                               // closed-loop stepper (open/closed-loop modes)
@@ -131,6 +149,7 @@ struct DriveSpec {
   AlarmRulesSpec alarm_rules;
   IoRuleSet io_rules = IoRuleSet::Generic;
   SoftLimitStop soft_limit_stop = SoftLimitStop::AtLimit;
+  std::vector<MonitorSpec> monitors;                  // vendor monitor objects kept live (optional key)
 };
 
 }  // namespace vdrive::profile

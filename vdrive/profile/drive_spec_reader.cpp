@@ -26,6 +26,10 @@ constexpr std::array<std::pair<std::string_view, IoRuleSet>, 4> kIoRuleSets{{
     {"ds1000a_ec", IoRuleSet::DS1000A}}};
 constexpr std::array<std::pair<std::string_view, SoftLimitStop>, 2> kSoftLimitStops{{
     {"at_limit", SoftLimitStop::AtLimit}, {"ramp", SoftLimitStop::Ramp}}};
+constexpr std::array<std::pair<std::string_view, MonitorQuantity>, 5> kMonitorQuantities{{
+    {"motor_speed_rpm", MonitorQuantity::MotorSpeedRpm}, {"speed_demand_rpm", MonitorQuantity::SpeedDemandRpm},
+    {"torque_demand_percent", MonitorQuantity::TorqueDemandPercent},
+    {"torque_actual_percent", MonitorQuantity::TorqueActualPercent}, {"motor_current_a", MonitorQuantity::MotorCurrentA}}};
 
 // A key naming a vendor alarm must name one of alarms.yaml ("" = none).
 void require_alarm(const ProductProfile& p, const std::string& file, const std::string& key, const std::string& code) {
@@ -148,6 +152,26 @@ std::vector<std::pair<std::int8_t, std::int8_t>> read_forbidden_switches(YamlMap
   return out;
 }
 
+// [{index: 0x3000, quantity: motor_speed_rpm, scale: 1}, ...]; optional.
+std::vector<MonitorSpec> read_monitors(YamlMapReader& m) {
+  std::vector<MonitorSpec> out;
+  if (!m.has("monitors")) return out;
+  const YAML::Node seq = m.sequence("monitors");
+  for (std::size_t i = 0; i < seq.size(); ++i) {
+    YamlMapReader e = m.element(seq, "monitors", i);
+    MonitorSpec s;
+    s.index = e.u16("index");
+    if (s.index == 0) e.fail("index", "expected an object index");
+    if (e.has("subindex")) s.subindex = e.u8("subindex");
+    s.quantity = read_enum(e, "quantity", kMonitorQuantities);
+    s.scale = e.real("scale");
+    if (!(s.scale > 0.0)) e.fail("scale", "expected a scale > 0 (quantity units per count)");
+    e.finish();
+    out.push_back(s);
+  }
+  return out;
+}
+
 }  // namespace
 
 DriveSpec read_drive(YamlMapReader m, const ModesSpec& modes) {
@@ -185,6 +209,7 @@ DriveSpec read_drive(YamlMapReader m, const ModesSpec& modes) {
   d.vendor_stop = read_vendor_stop(m.map("vendor_stop"));
   d.alarm_rules = read_alarm_rules(m.map("alarm_rules"));
   d.io_rules = read_enum(m, "io_rules", kIoRuleSets);
+  d.monitors = read_monitors(m);
   if (d.limit_switches == LimitSwitchRule::Alarm && d.alarms.limit_switch.empty())
     m.fail("limit_switches", "is alarm but alarms.limit_switch names no alarm");
   m.finish();

@@ -71,6 +71,7 @@ PdoRules read_pdo_rules(YamlMapReader m) {
   r.checked_at_safeop = m.boolean("checked_at_safeop");
   r.byte_aligned_total = m.boolean("byte_aligned_total");
   if (m.has("sm_control_mode_checked")) r.sm_control_mode_checked = m.boolean("sm_control_mode_checked");
+  if (m.has("unused_sm_must_be_disabled")) r.unused_sm_must_be_disabled = m.boolean("unused_sm_must_be_disabled");
   m.finish();
   return r;
 }

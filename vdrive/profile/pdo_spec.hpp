@@ -57,6 +57,11 @@ struct PdoRules {
   // SM2/SM3 control byte: the mode bits 1-0 must be 3-buffer (00b) as well as the direction bits 3-2;
   // false: the direction only (A6B Err81.7 names bits 3-2 alone, L33570, L33610).
   bool sm_control_mode_checked = true;
+  // A direction with nothing mapped wants its SM2/SM3 disabled: an enabled one is refused even at
+  // length 0 (ETG SSC CheckSmSettings; A6B Err81.7 reports SM settings with nothing mapped,
+  // L4907, L4915, L4954, L4960, L4974). false: an enabled SM of length 0 passes, as the ESC does not run it.
+  // An enabled SM with a length while nothing is mapped is a length fault either way.
+  bool unused_sm_must_be_disabled = false;
 };
 
 }  // namespace vdrive::profile

@@ -48,7 +48,25 @@ TEST(PdoSmCheck, EnabledIffDataIsMapped) {
   sms[2].activate = 0;
   EXPECT_EQ(check_process_data_sm(sms, 2, 9, kRamEnd), PdSmFault::Disabled);
   EXPECT_EQ(check_process_data_sm(sms, 2, 0, kRamEnd), PdSmFault::Ok);
-  EXPECT_EQ(check_process_data_sm(good_layout(), 2, 0, kRamEnd), PdSmFault::EnabledWithoutData);
+  // Nothing mapped and SM2 running with 9 bytes: the manuals' length rule (length != RxPDO size,
+  // A6B L33564-L33566, DS5C1 L7129-L7133), not a rule of its own.
+  EXPECT_EQ(check_process_data_sm(good_layout(), 2, 0, kRamEnd), PdSmFault::Length);
+}
+
+// An enabled SM2 of length 0 with nothing mapped: the ESC does not run it, so only a product whose
+// firmware wants unused SMs disabled refuses it (ETG SSC; A6B L4907, L4974); the DS5C1's E-817
+// list has nothing against it (L7129-L7133).
+TEST(PdoSmCheck, EnabledEmptySmWithNothingMappedOnlyWhereTheProductWantsItDisabled) {
+  auto sms = good_layout();
+  sms[2].length = 0;
+  EXPECT_EQ(check_process_data_sm(sms, 2, true, 0, kRamEnd, true, /*unused_must_be_disabled=*/false), PdSmFault::Ok);
+  EXPECT_EQ(check_process_data_sm(sms, 2, true, 0, kRamEnd, true, /*unused_must_be_disabled=*/true),
+            PdSmFault::EnabledWithoutData);
+  sms[2].activate = 0;
+  EXPECT_EQ(check_process_data_sm(sms, 2, true, 0, kRamEnd, true, /*unused_must_be_disabled=*/true), PdSmFault::Ok);
+  // A disabled SM is not in use: a length left in it is not looked at.
+  sms[2].length = 9;
+  EXPECT_EQ(check_process_data_sm(sms, 2, true, 0, kRamEnd, true, /*unused_must_be_disabled=*/true), PdSmFault::Ok);
 }
 
 TEST(PdoSmCheck, StartEvenAndThreeBuffersInsideProcessRam) {

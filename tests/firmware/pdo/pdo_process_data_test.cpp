@@ -7,7 +7,9 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <ostream>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -241,6 +243,68 @@ TEST_F(A6bSafeOpCheck, RemappedOutputsTakeEffectAtSafeOp) {
   EXPECT_EQ(b.run(lrw), 3);
   EXPECT_EQ(get(b.value(0x607A, 0)), 0x00ABCDEFu);
 }
+
+// ---- an SM2 the master enables while 1C12h assigns nothing (issue 22 item 12) ----------------
+// Per product (docs/process-data.md): SM2 running with a length is refused by every one (the
+// length rule: A6B L33564-L33566, DS5C1 L7129-L7133, ETG SSC for the DS1000A-EC); SM2 enabled
+// with length 0 by the A6B (L4907, L4974) and the DS1000A-EC (ETG SSC), not by the DS5C1.
+
+struct EmptyOutputsCase {
+  const char* product;
+  std::uint16_t inputs;   // factory TxPDO size
+  bool refuses_enabled_length_0;
+};
+
+void PrintTo(const EmptyOutputsCase& c, std::ostream* os) { *os << c.product; }
+
+class EmptyOutputs : public ::testing::TestWithParam<EmptyOutputsCase> {
+protected:
+  EmptyOutputs() : b(GetParam().product) {
+    b.mailbox_layout();
+    b.go(kPreOp);
+    const std::array<std::uint8_t, 1> none{0};
+    EXPECT_EQ(b.objects.write(0x1C12, 0, none, b.esm.state()), od::SdoAbort::Ok);
+    b.process_data_layout(0, GetParam().inputs);
+  }
+  void sm2(std::uint16_t length, bool enabled) {
+    const profile::SyncManagerSpec& s2 = b.product.sync_managers[2];
+    b.sm(2, s2.start, length, s2.control, enabled);
+  }
+  ModuleBench b;
+};
+
+TEST_P(EmptyOutputs, Sm2DisabledWithLengthZeroReachesSafeOp) {
+  b.go(kSafeOp);
+  EXPECT_EQ(b.esm.state(), ecat::AlState::SafeOp) << std::hex << b.esm.error_code();
+  EXPECT_EQ(b.module.output_bytes(), 0);
+}
+
+TEST_P(EmptyOutputs, Sm2RunningWithALengthIsRefusedWith001Dh) {
+  sm2(9, true);
+  b.go(kSafeOp);
+  EXPECT_EQ(b.esm.state(), ecat::AlState::PreOp);
+  EXPECT_TRUE(b.esm.error());
+  EXPECT_EQ(b.esm.error_code(), 0x001D);
+}
+
+TEST_P(EmptyOutputs, Sm2EnabledWithLengthZeroAsTheProductDecides) {
+  sm2(0, true);
+  b.go(kSafeOp);
+  if (GetParam().refuses_enabled_length_0) {
+    EXPECT_EQ(b.esm.state(), ecat::AlState::PreOp);
+    EXPECT_EQ(b.esm.error_code(), 0x001D);
+  } else {
+    EXPECT_EQ(b.esm.state(), ecat::AlState::SafeOp) << std::hex << b.esm.error_code();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Products, EmptyOutputs,
+                         ::testing::Values(EmptyOutputsCase{"a6b", kA6bIn, true},
+                                           EmptyOutputsCase{"ds5c1", 13, false},
+                                           EmptyOutputsCase{"ds1000a", 17, true}),
+                         [](const ::testing::TestParamInfo<EmptyOutputsCase>& info) {
+                           return std::string(info.param.product);
+                         });
 
 }  // namespace
 }  // namespace vdrive::firmware::pdo

@@ -42,7 +42,8 @@ ProcessDataModule::ProcessDataModule(FirmwareContext& context)
                             std::max(sm_count_ - 1, 0))),
       outputs_event_(1u << (al_event::kSmShift + outputs_sm_)),
       inputs_event_(1u << (al_event::kSmShift + inputs_sm_)),
-      mode_checked_(context.profile.pdo_rules.sm_control_mode_checked) {
+      mode_checked_(context.profile.pdo_rules.sm_control_mode_checked),
+      unused_disabled_(context.profile.pdo_rules.unused_sm_must_be_disabled) {
   install_pdo_write_rules(ctx_.objects, ctx_.esm, limits_);
 }
 
@@ -153,9 +154,9 @@ void ProcessDataModule::on_watchdog() {
 void ProcessDataModule::check_sms_while_running() {
   for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
   const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));
-  if (check_process_data_sm(sms, outputs_sm_, true, rx_plan_.bytes(), ram_end_, mode_checked_) != PdSmFault::Ok) {
+  if (check_process_data_sm(sms, outputs_sm_, true, rx_plan_.bytes(), ram_end_, mode_checked_, unused_disabled_) != PdSmFault::Ok) {
     raise_fault(code_or(codes_.invalid_output_config, kEtgOutputConfig), ecat::AlState::PreOp);
-  } else if (check_process_data_sm(sms, inputs_sm_, false, tx_plan_.bytes(), ram_end_, mode_checked_) != PdSmFault::Ok) {
+  } else if (check_process_data_sm(sms, inputs_sm_, false, tx_plan_.bytes(), ram_end_, mode_checked_, unused_disabled_) != PdSmFault::Ok) {
     raise_fault(code_or(codes_.invalid_input_config, kEtgInputConfig), ecat::AlState::PreOp);
   }
 }
@@ -182,10 +183,10 @@ CheckResult ProcessDataModule::check_preop_to_safeop() {
 
   for (int n = 0; n < sm_count_; ++n) sms_[static_cast<std::size_t>(n)] = ctx_.pdi.read_sm(n);
   const std::span<const SmChannel> sms(sms_.data(), static_cast<std::size_t>(sm_count_));
-  if (check_process_data_sm(sms, outputs_sm_, true, rx_map_.bytes(), ram_end_, mode_checked_) != PdSmFault::Ok) {
+  if (check_process_data_sm(sms, outputs_sm_, true, rx_map_.bytes(), ram_end_, mode_checked_, unused_disabled_) != PdSmFault::Ok) {
     return {code_or(codes_.invalid_output_config, kEtgOutputConfig), ecat::AlState::PreOp};
   }
-  if (check_process_data_sm(sms, inputs_sm_, false, tx_map_.bytes(), ram_end_, mode_checked_) != PdSmFault::Ok) {
+  if (check_process_data_sm(sms, inputs_sm_, false, tx_map_.bytes(), ram_end_, mode_checked_, unused_disabled_) != PdSmFault::Ok) {
     return {code_or(codes_.invalid_input_config, kEtgInputConfig), ecat::AlState::PreOp};
   }
 

@@ -94,6 +94,7 @@ private:
   int outputs_sm_, inputs_sm_;                    // SM2/SM3, or the SMs an I/O device uses for them
   std::uint32_t outputs_event_, inputs_event_;    // their AL event bits
   bool mode_checked_;                             // SM2/SM3 control mode bits checked (pdo_rules)
+  bool unused_disabled_;                          // an SM2/SM3 with nothing mapped must be disabled (pdo_rules)
   static constexpr Nanos kPollPeriod = 100'000;   // buffers without AL events are looked at this often
   bool polling_ = false;
   Nanos poll_at_ = 0;

@@ -24,7 +24,7 @@ std::string_view describe(PdSmFault fault) {
   switch (fault) {
     case PdSmFault::Ok: return "ok";
     case PdSmFault::Disabled: return "process-data SyncManager disabled although data is mapped";
-    case PdSmFault::EnabledWithoutData: return "process-data SyncManager enabled with nothing mapped";
+    case PdSmFault::EnabledWithoutData: return "process-data SyncManager enabled (length 0) with nothing mapped";
     case PdSmFault::Length: return "SyncManager length differs from the mapped size";
     case PdSmFault::Start: return "SyncManager buffers outside process RAM";
     case PdSmFault::OddStart: return "SyncManager start address is odd";
@@ -35,11 +35,18 @@ std::string_view describe(PdSmFault fault) {
 }
 
 PdSmFault check_process_data_sm(std::span<const SmChannel> sms, int sm, bool outputs, std::uint16_t mapped_bytes,
-                                std::uint32_t ram_end, bool check_mode) {
+                                std::uint32_t ram_end, bool check_mode, bool unused_must_be_disabled) {
   const auto n = static_cast<std::size_t>(sm);
   if (n >= sms.size()) return mapped_bytes > 0 ? PdSmFault::Disabled : PdSmFault::Ok;
   const SmChannel& ch = sms[n];
-  if (mapped_bytes == 0) return active(ch) ? PdSmFault::EnabledWithoutData : PdSmFault::Ok;
+  if (mapped_bytes == 0) {
+    // The length rule itself: 0 bytes mapped, so a running SM's length differs (A6B L33564-L33566,
+    // L33602-L33604; DS5C1 L7129-L7133; the ETG SSC's CheckSmSettings). A disabled SM is not in
+    // use and its length is not looked at.
+    if (active(ch)) return PdSmFault::Length;
+    if (unused_must_be_disabled && ch.enabled()) return PdSmFault::EnabledWithoutData;
+    return PdSmFault::Ok;
+  }
   if (!ch.enabled()) return PdSmFault::Disabled;
   if (ch.length != mapped_bytes) return PdSmFault::Length;
   if (ch.start % 2 != 0) return PdSmFault::OddStart;
