@@ -109,8 +109,10 @@ void SineProgram::outputs(std::span<std::uint8_t> image) {
     c.last_cw = cw;
     image_put<std::uint16_t>(image, c.cw, cw);
     image_put<std::int8_t>(image, c.mode, kCsp);
-    std::int32_t target = c.position;  // until enabled, 607Ah follows 6064h (A6B L16813-L16819)
-    if (c.enabled_at >= 0) {
+    // Until enabled (and while a fault has the drive disabled), 607Ah follows 6064h (A6B
+    // L16813-L16819), so the motion starts again from where the axis stands.
+    std::int32_t target = c.position;
+    if (c.enabled && c.enabled_at >= 0) {
       const Nanos t = c.now - c.enabled_at - options_.settle;
       if (t < 0) {
         target = c.start;
