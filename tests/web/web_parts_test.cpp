@@ -142,3 +142,33 @@ TEST(LineRecord, AScenarioIsDecidedOnceEveryExpectationIs) {
 
 }  // namespace
 }  // namespace vdrive::web
+
+#include "vdrive/profile/profile_loader.hpp"
+
+namespace vdrive::web {
+namespace {
+
+TEST(LineRecord, AnAlarmValueSeveralAlarmsShareNamesThemAll) {
+  const profile::ProductProfile a6b = profile::load_profile("a6b");
+  SlaveInfo s;
+  s.position = 1;
+  s.product = "a6b";
+  s.drive = true;
+  s.profile = &a6b;
+  LineRecord record({s}, LineIdentity{}, 0);
+  telemetry::EventSample shared;
+  shared.slave = 1;
+  shared.kind = telemetry::EventKind::alarm_raised;
+  shared.value = 0xFF1B;  // 27.1, 27.4, 27.6 and 27.7
+  record.add(shared);
+  telemetry::EventSample single = shared;
+  single.value = 0xFF0C;  // 12.0 only
+  record.add(single);
+  const nlohmann::json events = record.events(0, "alarm_raised", 0)["events"];
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_NE(events[0]["text"].get<std::string>().find("one of 27.1, 27.4, 27.6, 27.7"), std::string::npos) << events[0]["text"];
+  EXPECT_NE(events[1]["text"].get<std::string>().find("12.0 "), std::string::npos) << events[1]["text"];
+}
+
+}  // namespace
+}  // namespace vdrive::web

@@ -40,8 +40,20 @@ LineRecord::LineRecord(std::vector<SlaveInfo> slaves, LineIdentity identity, Nan
       registers_(slaves_.size()) {}
 
 std::string LineRecord::alarm_text(std::size_t i, std::uint16_t error_code) const {
-  if (const profile::AlarmSpec* a = slaves_[i].profile != nullptr ? slaves_[i].profile->alarm_with_error_code(error_code) : nullptr)
-    return fmt::format("{} {}", a->code, a->name_en.empty() ? a->name : a->name_en);
+  // Several alarms can show one 603Fh value (A6B 27.1, 27.4, 27.6, 27.7 all FF1Bh): then all are named.
+  std::string codes;
+  const profile::AlarmSpec* only = nullptr;
+  int count = 0;
+  if (slaves_[i].profile != nullptr) {
+    for (const profile::AlarmSpec& a : slaves_[i].profile->alarms) {
+      if (a.error_code != error_code) continue;
+      codes += (codes.empty() ? "" : ", ") + a.code;
+      only = &a;
+      ++count;
+    }
+  }
+  if (count == 1) return fmt::format("{} {}", only->code, only->name_en.empty() ? only->name : only->name_en);
+  if (count > 1) return fmt::format("one of {}", codes);
   return fmt::format("603Fh {:04X}h", error_code);
 }
 
@@ -123,7 +135,11 @@ json LineRecord::drive_json(std::size_t i) const {
   d["alarm"] = nullptr;
   if (a.error_code != 0) {
     json alarm = {{"code", nullptr}, {"name", fmt::format("603Fh {:04X}h", a.error_code)}, {"error_code", a.error_code}, {"warning", false}};
-    if (const profile::AlarmSpec* spec = slaves_[i].profile->alarm_with_error_code(a.error_code)) {
+    // The drive's own newest alarm when it shows this 603Fh; else the first of the table that does.
+    const profile::AlarmSpec* newest = registers_[i].alarm;
+    const profile::AlarmSpec* spec = newest != nullptr && newest->error_code == a.error_code
+                                         ? newest : slaves_[i].profile->alarm_with_error_code(a.error_code);
+    if (spec != nullptr) {
       alarm["code"] = spec->code;
       alarm["name"] = spec->name_en.empty() ? spec->name : spec->name_en;
       alarm["warning"] = spec->warning;

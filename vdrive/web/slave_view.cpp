@@ -1,6 +1,7 @@
 #include "vdrive/web/slave_view.hpp"
 
 #include "ethercat/registers.hpp"
+#include "vdrive/drive/drive_engine.hpp"
 #include "vdrive/network/network.hpp"
 
 namespace vdrive::web {
@@ -47,6 +48,8 @@ void read_registers(network::Network& network, std::vector<SlaveRegisters>& out)
     std::array<std::uint8_t, 4> b{};
     e.pdi_read(reg::kDcActivation, std::span<std::uint8_t>(b.data(), 1));
     r.dc_active = (b[0] & 0x03) == 0x03;
+    drive::DriveEngine* d = network.firmware(i).drive();
+    r.alarm = d != nullptr ? d->alarms().newest() : nullptr;
     e.pdi_read(reg::kDcSystemTimeDifference, b);
     const std::uint32_t diff = static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
                                static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24;

@@ -10,7 +10,7 @@
 #include "common/clock.hpp"
 
 namespace vdrive::network { class Network; }
-namespace vdrive::profile { struct ProductProfile; }
+namespace vdrive::profile { struct ProductProfile; struct AlarmSpec; }
 
 namespace vdrive::web {
 
@@ -31,6 +31,9 @@ struct SlaveRegisters {
   std::array<std::uint8_t, 4> rx_errors{};   // per port: invalid frame counter 0300h + 2p
   std::array<std::uint8_t, 4> lost_links{};  // per port: 0310h + p
   bool dc_active = false;                    // 0981h: cyclic operation and SYNC0 on
+  // The drive's newest active alarm (several alarms can share one 603Fh value, A6B 27.x all show
+  // FF1Bh); a pointer into the immutable profile, or null.
+  const profile::AlarmSpec* alarm = nullptr;
   std::int64_t system_time_difference = 0;   // 092Ch as signed ns
 };
 
