@@ -20,8 +20,9 @@
 #   MASTER_OPTS="..."  extra master options (e.g. "--busy-poll-us 1000")
 #   RT_PRIORITY=N      run the master and every responder (KickCAT too) under `chrt -f N`
 #   OUT=DIR            keep the JSON results and logs in DIR (default: a temporary directory)
-#   WEB_PAGE=1         also measure `vdrive run --web` with the live page open in headless chromium
-#                      (label vdrive+page; docs/web.md), to see what an open page costs the line
+#   WEB_PAGE=1         also measure `vdrive run --web` with its live stream read by curl (label
+#                      vdrive+stream: the server's whole cost) and with the page open in headless
+#                      chromium on the same machine (vdrive+page: the server and a browser), docs/web.md
 # Exit: 0 all measured, 1 a run failed, 77 not root.
 set -u
 
@@ -128,12 +129,19 @@ for n in $DRIVES; do
   stop_server
   if [ -n "${WEB_PAGE:-}" ]; then
     # shellcheck disable=SC2046,SC2086
-    start_server "vdrive-page-$n" "serving" "$VDRIVE" run --iface "$S_IF" --no-control --web 127.0.0.1:8377 $(drive_args "$n") ${VDRIVE_OPTS:-}
-    # The page renders in a headless browser in the namespace for the whole measurement.
+    start_server "vdrive-web-$n" "serving" "$VDRIVE" run --iface "$S_IF" --no-control --web 127.0.0.1:8377 $(drive_args "$n") ${VDRIVE_OPTS:-}
+    # The stream alone: what the server does for an open page, without a browser's rendering.
+    ip netns exec "$NS" curl -sN http://127.0.0.1:8377/api/v1/stream >/dev/null 2>&1 &
+    PAGE_PID=$!
+    sleep 2
+    measure vdrive+stream "$n" op || status=1
+    stop_page
+    # The page rendering in a headless browser in the namespace for the whole measurement.
     ip netns exec "$NS" chromium --headless=new --no-sandbox --disable-gpu --user-data-dir="$OUT/chromium" \
       --remote-debugging-port=0 http://127.0.0.1:8377/ >"$OUT/chromium-$n.log" 2>&1 &
     PAGE_PID=$!
     sleep 3
+    echo "page: $(ip netns exec "$NS" ss -Htn state established '( sport = :8377 )' | wc -l) connection(s) open to the web server"
     measure vdrive+page "$n" op || status=1
     stop_page
     stop_server

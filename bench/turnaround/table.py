@@ -27,7 +27,7 @@ def main(path):
     print("| N | rate | responder | image B | sent | lost | wrong WKC | p50 us | p99 us | p99.9 us | max us |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for n, mode in keys:
-        for who in ("echo", "vdrive", "kickcat"):
+        for who in ("echo", "vdrive", "vdrive+stream", "vdrive+page", "kickcat"):
             r = runs.get((n, mode, who))
             if r:
                 print(f"| {n} | {mode} | {who} | {r['image_bytes']} | {r['sent']} | {r['lost']} | {r['wrong_wkc']} | "
