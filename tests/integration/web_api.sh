@@ -8,7 +8,7 @@
 #  2. `vdrive run --web 0.0.0.0:PORT` logs a token and a warning; a change without it is 401, with
 #     it 201.
 #  3. `vdrive scenario run --veth --web`: the page shows the scenario, its log and its expectations
-#     as they are met.
+#     as they are met, and its steps in the event log.
 #
 # Usage: bash web_api.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
 set -u
@@ -90,7 +90,10 @@ seen=""
 for _ in $(seq 1 200); do
   seen=$(api "http://127.0.0.1:$PORT/api/v1/line" 2>/dev/null | json \
     "'%s %d %d' % (d['scenario']['name'], sum(e['state'] == 'met' for e in d['scenario']['expectations']), len(d['scenario']['log'])) if d.get('scenario') else ''" 2>/dev/null)
-  case "$seen" in fault_overload\ [1-9]*) break ;; esac
+  case "$seen" in fault_overload\ [1-9]*)
+    steps=$(api "http://127.0.0.1:$PORT/api/v1/events?kind=scenario" 2>/dev/null | json "len(d['events'])" 2>/dev/null)
+    break ;;
+  esac
   kill -0 "$SC_PID" 2>/dev/null || break
   sleep 0.05
 done
@@ -101,4 +104,6 @@ case "$seen" in
   fault_overload\ [1-9]*) echo "ok: the page showed the scenario with met expectations ($seen)" ;;
   *) fail "the page never showed the scenario with a met expectation (last: '$seen')" ;;
 esac
+[ "${steps:-0}" -gt 0 ] || fail "the scenario's steps are not in the page's event log"
+echo "ok: $steps scenario steps in the event log"
 echo "PASS"

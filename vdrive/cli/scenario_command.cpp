@@ -130,7 +130,9 @@ void run(const ScenarioOptions& o) {
     }
     ro.log = [&](const std::string& line) {
       if (o.verbose) std::fprintf(stderr, "  %s\n", line.c_str());
-      if (page != nullptr) page->record().update_scenario([&](web::ScenarioView& v) { v.log.push_back(line); });
+      if (page == nullptr) return;
+      page->record().update_scenario([&](web::ScenarioView& v) { v.log.push_back(line); });
+      page->note(0, "scenario", line);
     };
     ro.decided = [&](const scenario::ExpectationResult& r) {
       if (page == nullptr) return;

@@ -257,4 +257,8 @@ int WebServer::port() const { return impl_->port; }
 
 LineRecord& WebServer::record() { return impl_->record; }
 
+void WebServer::note(int slave, const std::string& kind, const std::string& text) {
+  impl_->record.note(slave, kind, 0, 0, text, impl_->clock.now());
+}
+
 }  // namespace vdrive::web

@@ -65,6 +65,8 @@ public:
   int port() const;  // the bound port (useful with port 0 in tests)
   // A real-time scenario reports its progress here.
   LineRecord& record();
+  // An event of the page's log from outside the line (a scenario's step), stamped now.
+  void note(int slave, const std::string& kind, const std::string& text);
 
 private:
   struct Impl;
