@@ -68,7 +68,7 @@ public:
         dictionary(od::Dictionary::load(product, profile_dir)),
         objects(dictionary),
         esm(EsmTraits::of(product)),
-        context{product, pdi, objects, esm},
+        context{product, pdi, objects, esm, &aborts},
         module(context, mailbox::MailboxOptions{state_dir.empty() ? temp.path : state_dir}) {
     pdi.write_u32(reg::kAlEventMask, module.serviced_events());
     module.power_on(clock.now());
@@ -186,6 +186,7 @@ public:
   od::Dictionary dictionary;
   od::ObjectStore objects;
   AlStateMachine esm;
+  SdoAbortRecord aborts;  // the SDO server's count of its aborts
   FirmwareContext context;
   mailbox::MailboxModule module;
   std::uint8_t counter = 0;

@@ -172,3 +172,27 @@ TEST(LineRecord, AnAlarmValueSeveralAlarmsShareNamesThemAll) {
 
 }  // namespace
 }  // namespace vdrive::web
+
+namespace vdrive::web {
+namespace {
+
+TEST(LineRecord, AnSdoAbortAMasterGotIsAnEvent) {
+  SlaveInfo s;
+  s.position = 1;
+  LineRecord record({s}, LineIdentity{}, 0);
+  std::vector<SlaveRegisters> r(1);
+  r[0].sdo_aborts = 3;  // before the page: the baseline
+  record.set_registers(r, 10);
+  EXPECT_TRUE(record.events(0, "sdo_abort", 0)["events"].empty());
+  r[0].sdo_aborts = 5;
+  r[0].abort_index = 0x6041;
+  r[0].abort_code = 0x06010002;
+  record.set_registers(r, 20);
+  const nlohmann::json e = record.events(0, "sdo_abort", 0)["events"];
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0]["slave"], 1);
+  EXPECT_EQ(e[0]["text"], "6041h:00 abort 0x06010002 Attempt to write a read-only object (the last of 2)");
+}
+
+}  // namespace
+}  // namespace vdrive::web

@@ -9,6 +9,7 @@
 #include "common/clock.hpp"
 #include "ethercat/al_state.hpp"
 #include "vdrive/firmware/al_state_machine.hpp"
+#include "vdrive/firmware/sdo_abort_record.hpp"
 
 namespace vdrive::od { class ObjectStore; }
 namespace vdrive::profile { struct ProductProfile; }
@@ -23,6 +24,7 @@ struct FirmwareContext {
   Pdi& pdi;
   od::ObjectStore& objects;
   const AlStateMachine& esm;          // current state; modules never change it directly
+  SdoAbortRecord* sdo_aborts = nullptr;  // the SDO server counts its aborts here (may be null)
 };
 
 class FirmwareModule {

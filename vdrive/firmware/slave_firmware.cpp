@@ -55,7 +55,8 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   bool mailbox_running = false;
   std::optional<std::uint16_t> device_id_switch;
   std::array<SmChannel, kMaxSyncManagers> sms{};  // scratch for SM reads; no allocation
-  FirmwareContext context{profile, pdi, objects, esm};
+  SdoAbortRecord sdo_aborts;
+  FirmwareContext context{profile, pdi, objects, esm, &sdo_aborts};
   std::vector<std::unique_ptr<FirmwareModule>> modules;  // filled by install_modules()
 
   // The firmware's parts, in service order. Each issue's module is added here.
@@ -274,6 +275,8 @@ void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_sw
 drive::DriveEngine* SlaveFirmware::drive() { return impl_->drive_ ? &impl_->drive_->engine() : nullptr; }
 plant::Plant* SlaveFirmware::plant() { return impl_->drive_ ? &impl_->drive_->plant() : nullptr; }
 mailbox::MailboxModule& SlaveFirmware::mailbox() { return *impl_->mailbox_; }
+const SdoAbortRecord& SlaveFirmware::sdo_aborts() const { return impl_->sdo_aborts; }
+
 od::ObjectStore& SlaveFirmware::objects() { return impl_->objects; }
 
 }  // namespace vdrive::firmware

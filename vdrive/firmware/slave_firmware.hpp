@@ -13,6 +13,7 @@
 #include "esc_model/esc.hpp"
 #include "plant/plant_description.hpp"
 #include "vdrive/profile/product_profile.hpp"
+#include "vdrive/firmware/sdo_abort_record.hpp"
 
 namespace vdrive::drive { class DriveEngine; }
 namespace vdrive::plant { class Plant; }
@@ -59,6 +60,8 @@ public:
   mailbox::MailboxModule& mailbox();
   // This slave's object values (scenario expectations and traces read them as the drive has them).
   od::ObjectStore& objects();
+  // The SDO aborts this slave has answered (count and the last), for observers.
+  const SdoAbortRecord& sdo_aborts() const;
 
 private:
   struct Impl;

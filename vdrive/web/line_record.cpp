@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "master/al_state.hpp"
+#include "master/coe.hpp"
 #include "vdrive/profile/product_profile.hpp"
 #include "vdrive/web/cia402_text.hpp"
 
@@ -93,9 +94,21 @@ void LineRecord::add(const telemetry::Sample& sample) {
   }
 }
 
-void LineRecord::set_registers(const std::vector<SlaveRegisters>& registers) {
+void LineRecord::set_registers(const std::vector<SlaveRegisters>& registers, Nanos now) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  std::copy_n(registers.begin(), std::min(registers.size(), registers_.size()), registers_.begin());
+  for (std::size_t i = 0; i < std::min(registers.size(), registers_.size()); ++i) {
+    const SlaveRegisters& r = registers[i];
+    // An SDO abort a master got since the last copy (only the last one of several is known).
+    if (registers_seen_ && r.sdo_aborts > registers_[i].sdo_aborts) {
+      const std::uint32_t more = r.sdo_aborts - registers_[i].sdo_aborts;
+      push_event({0, now, static_cast<int>(i + 1), "sdo_abort", r.abort_code, 0,
+                  fmt::format("{:04X}h:{:02X} abort 0x{:08X} {}{}", r.abort_index, r.abort_subindex, r.abort_code,
+                              master::sdo_abort_text(r.abort_code),
+                              more > 1 ? fmt::format(" (the last of {})", more) : std::string())});
+    }
+    registers_[i] = r;
+  }
+  registers_seen_ = true;
 }
 
 void LineRecord::set_faults(std::vector<control::FaultStatus> faults) {

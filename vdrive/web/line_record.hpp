@@ -37,7 +37,8 @@ public:
   LineRecord(std::vector<SlaveInfo> slaves, LineIdentity identity, Nanos origin);
 
   void add(const telemetry::Sample& sample);
-  void set_registers(const std::vector<SlaveRegisters>& registers);
+  // `now`: when they were copied (an SDO abort found then is an event at that time).
+  void set_registers(const std::vector<SlaveRegisters>& registers, Nanos now);
   void set_faults(std::vector<control::FaultStatus> faults);
   // An event that does not come from the sampler (an OD write, a plant change, a scenario step).
   void note(int slave, const std::string& kind, std::int64_t value, std::int64_t previous, const std::string& text, Nanos time);
@@ -97,6 +98,7 @@ private:
   mutable std::mutex mutex_;
   std::vector<Axis> axes_;
   std::vector<SlaveRegisters> registers_;
+  bool registers_seen_ = false;  // the first copy is the baseline, not news
   telemetry::BusSample bus_{};
   std::vector<control::FaultStatus> faults_;
   std::deque<Event> events_;

@@ -50,6 +50,11 @@ void read_registers(network::Network& network, std::vector<SlaveRegisters>& out)
     r.dc_active = (b[0] & 0x03) == 0x03;
     drive::DriveEngine* d = network.firmware(i).drive();
     r.alarm = d != nullptr ? d->alarms().newest() : nullptr;
+    const firmware::SdoAbortRecord& aborts = network.firmware(i).sdo_aborts();
+    r.sdo_aborts = aborts.count;
+    r.abort_index = aborts.index;
+    r.abort_subindex = aborts.subindex;
+    r.abort_code = aborts.code;
     e.pdi_read(reg::kDcSystemTimeDifference, b);
     const std::uint32_t diff = static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
                                static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24;

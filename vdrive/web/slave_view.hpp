@@ -34,6 +34,11 @@ struct SlaveRegisters {
   // The drive's newest active alarm (several alarms can share one 603Fh value, A6B 27.x all show
   // FF1Bh); a pointer into the immutable profile, or null.
   const profile::AlarmSpec* alarm = nullptr;
+  // SDO aborts the slave answered a master with: how many so far, and the last (firmware's record).
+  std::uint32_t sdo_aborts = 0;
+  std::uint16_t abort_index = 0;
+  std::uint8_t abort_subindex = 0;
+  std::uint32_t abort_code = 0;
   std::int64_t system_time_difference = 0;   // 092Ch as signed ns
 };
 

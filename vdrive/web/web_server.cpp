@@ -160,7 +160,9 @@ struct WebServer::Impl {
       while (std::optional<telemetry::Sample> s = sampler.pop()) record.add(*s);
       const auto now = std::chrono::steady_clock::now();
       if (now >= next_registers) {
-        if (calls.run([&](Nanos) { read_registers(network, registers); }, kLoopTimeout)) record.set_registers(registers);
+        Nanos copied = 0;
+        if (calls.run([&](Nanos now) { read_registers(network, registers); copied = now; }, kLoopTimeout))
+          record.set_registers(registers, copied);
         next_registers = now + 100ms;
       }
       if (now >= next_faults && context.faults != nullptr) {

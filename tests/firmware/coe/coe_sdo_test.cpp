@@ -92,6 +92,24 @@ TEST_P(SdoOnProduct, AbortsFromTheObjectDictionary) {
 
 // DS5C1 P0-27 (201Bh) and P0-29 (201Dh): chapter 5 documents the stop modes 0-5 (L2169-L2194) where
 // App. 1.1 lists "0、2" (L8677, L8680); every value chapter 5 describes is taken, 6 is too high.
+TEST_P(SdoOnProduct, EveryAbortIsCountedWithTheLastOneKept) {
+  Bench b(load(GetParam()));
+  b.to_preop();
+  EXPECT_EQ(b.aborts.count, 0u);
+  std::uint16_t missing = 0x5FFF;
+  while (b.dictionary.find(missing) != nullptr) --missing;
+  (void)sdo_read(b, missing, 0);
+  EXPECT_EQ(b.aborts.count, 1u);
+  EXPECT_EQ(b.aborts.index, missing);
+  EXPECT_EQ(b.aborts.code, 0x06020000u);
+  (void)sdo_write(b, 0x6041, 0, le(0, 2));  // read-only
+  EXPECT_EQ(b.aborts.count, 2u);
+  EXPECT_EQ(b.aborts.index, 0x6041);
+  EXPECT_EQ(b.aborts.code, 0x06010002u);
+  (void)sdo_read(b, 0x1018, 1);  // answered: not an abort
+  EXPECT_EQ(b.aborts.count, 2u);
+}
+
 TEST(SdoDs5c1, StopModeParametersTakeTheSixModesOfChapter5) {
   Bench b(load("ds5c1"));
   b.to_preop();

@@ -22,7 +22,7 @@ CoeServer::CoeServer(FirmwareContext& context, const std::string& state_dir)
     : sdo_info_((context.profile.coe_details & kCoeSdoInfo) != 0),
       parameters_(std::make_unique<ParameterStore>(context.profile, context.objects, state_dir)),
       sdo_(std::make_unique<SdoServer>(context.profile, context.objects, context.esm,
-                                       parameters_.get())),
+                                       parameters_.get(), context.sdo_aborts)),
       info_(std::make_unique<SdoInfo>(context.objects.dictionary(),
                                       context.objects.dictionary().find(kStoreParameters) !=
                                           nullptr)) {}

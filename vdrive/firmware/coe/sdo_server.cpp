@@ -36,11 +36,12 @@ od::SdoAbort complete_access_refusal(const profile::ProductProfile& profile) {
 }
 
 SdoServer::SdoServer(const profile::ProductProfile& profile, od::ObjectStore& objects,
-                     const AlStateMachine& esm, ParameterStore* parameters)
+                     const AlStateMachine& esm, ParameterStore* parameters, SdoAbortRecord* aborts)
     : profile_(profile),
       objects_(objects),
       esm_(esm),
       parameters_(parameters),
+      aborts_(aborts),
       complete_access_((profile.coe_details & kCoeCompleteAccess) != 0),
       value_(largest_object(objects.dictionary())) {}
 
@@ -79,6 +80,7 @@ std::size_t SdoServer::abort(std::span<std::uint8_t> reply, std::uint16_t index,
   ecat::put_le16(reply, sdo::kIndex, index);
   reply[sdo::kSubindex] = subindex;
   ecat::put_le32(reply, sdo::kData, static_cast<std::uint32_t>(code));
+  if (aborts_ != nullptr) *aborts_ = {aborts_->count + 1, index, subindex, static_cast<std::uint32_t>(code)};
   return sdo::kInitiateSize;
 }
 

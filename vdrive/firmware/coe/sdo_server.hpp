@@ -20,6 +20,7 @@
 
 #include "vdrive/firmware/al_state_machine.hpp"
 #include "vdrive/firmware/mailbox/protocol.hpp"
+#include "vdrive/firmware/sdo_abort_record.hpp"
 #include "vdrive/od/object_store.hpp"
 #include "vdrive/profile/product_profile.hpp"
 
@@ -33,8 +34,9 @@ od::SdoAbort complete_access_refusal(const profile::ProductProfile& profile);
 
 class SdoServer {
 public:
+  // `aborts` (may be null) counts every abort this server answers.
   SdoServer(const profile::ProductProfile& profile, od::ObjectStore& objects,
-            const AlStateMachine& esm, ParameterStore* parameters);
+            const AlStateMachine& esm, ParameterStore* parameters, SdoAbortRecord* aborts = nullptr);
 
   // One SDO request (mailbox payload incl. the CoE header); the SDO response or abort is written
   // to `reply` (incl. the CoE header).
@@ -64,6 +66,7 @@ private:
   od::ObjectStore& objects_;
   const AlStateMachine& esm_;
   ParameterStore* parameters_;
+  SdoAbortRecord* aborts_;
   bool complete_access_;
   std::vector<std::uint8_t> value_;   // staging: one object (complete access) or one entry
 
