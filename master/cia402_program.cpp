@@ -23,6 +23,14 @@ constexpr std::uint16_t kPdoOut[] = {0x1600};
 constexpr std::uint16_t kPdoIn[] = {0x1A00};
 constexpr std::int8_t kCsp = 8;
 
+// Neither Operation enabled, Quick stop active nor Fault reaction active: the states in which an
+// ESM change is no alarm (IEC 61800-7-201 statusword patterns).
+bool out_of_operation(std::uint16_t statusword) {
+  const bool enabled = (statusword & 0x006F) == 0x0027, quick_stop = (statusword & 0x006F) == 0x0007,
+             reacting = (statusword & 0x004F) == 0x000F;
+  return !enabled && !quick_stop && !reacting;
+}
+
 }  // namespace
 
 SineProgram::SineProgram(const SineProgramOptions& options) : options_(options) {}
@@ -102,6 +110,16 @@ void SineProgram::outputs(std::span<std::uint8_t> image) {
     c.now += options_.cycle;
     const std::uint16_t s = c.status_value;
     std::uint16_t cw = 0x0006;
+    if (c.finished) {
+      // Shutdown (transition 8) before the master leaves Op: a drive still in Operation enabled
+      // or Quick stop active when the ESM changes raises A6B Err88.2 (L33851-L33875), DS5C1 E-882
+      // (L7137), and stays in Fault for whoever comes next. A fault now is left for them to see.
+      c.last_cw = cw;
+      image_put<std::uint16_t>(image, c.cw, cw);
+      image_put<std::int8_t>(image, c.mode, kCsp);
+      image_put<std::int32_t>(image, c.target, c.position);
+      continue;
+    }
     if (s & 0x0008) cw = c.last_cw == 0x0080 ? 0x0000 : 0x0080;     // fault: reset on a 0->1 edge
     else if ((s & 0x004F) == 0x0040) cw = 0x0006;                    // switch on disabled -> shutdown
     else if ((s & 0x006F) == 0x0021) cw = 0x0007;                    // ready -> switch on
@@ -135,7 +153,7 @@ void SineProgram::inputs(std::span<std::uint8_t> image) {
     DriveResult& r = results_[i];
     c.status_value = image_get<std::uint16_t>(image, c.status);
     c.position = image_get<std::int32_t>(image, c.actual);
-    r.statusword = c.status_value;
+    if (!c.finished) r.statusword = c.status_value;  // as the sine ended, not after the shutdown
     r.error_code = image_get<std::uint16_t>(image, c.error);
     const bool enabled = (c.status_value & 0x006F) == 0x0027 && image_get<std::int8_t>(image, c.mode_display) == kCsp;
     // Enabled for the first time, or again after a fault the program reset: the motion starts
@@ -171,7 +189,7 @@ bool SineProgram::done() const {
   for (const Channel& c : channels_) {
     if (!c.mapped) continue;
     any = true;
-    if (!c.finished) return false;
+    if (!c.finished || !out_of_operation(c.status_value)) return false;
   }
   return any;
 }

@@ -7,6 +7,8 @@
 // mode with 607Ah tracking 6064h until enabled, waits `settle`, then commands
 // 607Ah = start + amplitude * (1 - cos(2 pi f t)) — a sine that starts at rest, as a PLC's cam
 // would, instead of a speed step at t = 0 — and records the drive's following error (60F4h).
+// After the sine it shuts every drive down (6040h = 0006h) and is done once none is in Operation
+// enabled, so the master leaves Op without an ESM-change alarm (A6B Err88.2, DS5C1 E-882).
 #include <cstdint>
 #include <span>
 #include <string>
@@ -32,7 +34,7 @@ struct DriveResult {
   std::uint16_t station = 0;
   bool enabled = false;                 // reached Operation enabled
   bool faulted = false;                 // saw the fault bit after enabling
-  std::uint16_t statusword = 0;
+  std::uint16_t statusword = 0;         // 6041h when the sine ended (before the shutdown)
   std::uint16_t error_code = 0;         // 603Fh last seen
   std::uint32_t following_window = 0;   // 6065h
   std::int64_t max_following_error = 0; // max |60F4h| while the sine ran
@@ -55,7 +57,9 @@ public:
   void preop(Master& master);                    // OpRunOptions::preop
   void outputs(std::span<std::uint8_t> image);   // OpRunOptions::outputs
   void inputs(std::span<std::uint8_t> image);    // OpRunOptions::inputs
-  bool done() const;                             // OpRunOptions::done: every drive ran its sine
+  // OpRunOptions::done: every drive ran its sine and has been shut down (out of Operation
+  // enabled), so that the master's leaving Op raises no alarm.
+  bool done() const;
   // Runs this program in `options` (preop, outputs, inputs, done); it must outlive the run.
   void attach(OpRunOptions& options);
   // Bus cycles of length `cycle` that settling and the sine take, with 5,000 to spare for enabling.

@@ -34,11 +34,36 @@ void require(const Wkc& wkc, std::uint16_t expected, std::string_view what, std:
 }
 }  // namespace
 
+bool Master::line_to_init() {
+  const auto n = static_cast<std::uint16_t>(slaves_.size());
+  require(transport_.bwr_value<std::uint8_t>(reg::kAlControl, static_cast<std::uint8_t>(AlState::Init) | reg::kAlAcknowledge),
+          n, "BWR AL control (Init + ack)");
+  // A BRD ORs every slave's AL status into one word: no state bit beyond Init's (1) means no
+  // slave is anywhere else (Pre-Op 2, Safe-Op 4, Op 8, Boot 3).
+  constexpr auto kAboveInit = static_cast<std::uint8_t>(reg::kAlStateMask & ~static_cast<unsigned>(AlState::Init));
+  const Nanos deadline = clock_.now() + options_.state_timeout;
+  for (;;) {
+    std::array<std::uint8_t, 2> status{};
+    require(transport_.brd(reg::kAlStatus, status), n, "BRD AL status");
+    if ((status[0] & kAboveInit) == 0) return true;
+    if (clock_.now() >= deadline) return false;
+    sleep_poll();
+  }
+}
+
 void Master::reset_line() {
   // The same reset a master such as SOEM applies before configuring: every slave back to a
   // known, unconfigured state, whatever a previous master left behind.
   const auto n = static_cast<std::uint16_t>(slaves_.size());
   std::array<std::uint8_t, 64> zeros{};
+  // Init first, and only then the registers. A slave still in Pre-Op or higher (where the last
+  // command left it) checks its mailbox SyncManagers whenever they change: clearing them under
+  // it is a wrong mailbox configuration, AL 0016h, which the A6B raises as Err81.1 (detected in
+  // PreOP, SafeOP and OP, L33400-L33446) and the DS5C1 as E-811 (L7125), both 603Fh FF51h,
+  // still there after the AL acknowledge until a fault reset. SOEM's ecx_detect_slaves likewise
+  // requests Init before it touches anything. A slave that takes longer than the state timeout
+  // (a drive finishing an Err88.2 stop in Op, A6B L3365-L3371) is reset anyway, as before.
+  line_to_init();
   require(transport_.bwr_value<std::uint8_t>(reg::kDlControlLoop, 0x00), n, "BWR DL control (loops auto)");
   require(transport_.bwr_value<std::uint16_t>(reg::kEcatEventMask, 0x0004), n, "BWR ECAT event mask");
   require(transport_.bwr(reg::kRxErrorCounters, std::span(zeros.data(), 8)), n, "BWR RX error counters");

@@ -90,9 +90,10 @@ public:
   Master(const Master&) = delete;
   Master& operator=(const Master&) = delete;
 
-  // Counts the slaves (BRD 0x0000), resets them to a known state (Init, FMMUs/SMs cleared, loops
-  // auto, alias off, EEPROM to ECAT), assigns station addresses 0x1001.. (APWR 0x0010) and checks
-  // them back (FPRD), then reads every SII. Returns the number of slaves. Throws MasterError.
+  // Counts the slaves (BRD 0x0000), takes them to Init and waits for it, resets them to a known
+  // state (FMMUs/SMs cleared, loops auto, alias off, EEPROM to ECAT), assigns station addresses
+  // 0x1001.. (APWR 0x0010) and checks them back (FPRD), then reads every SII. Returns the number
+  // of slaves. Throws MasterError.
   std::size_t scan();
 
   std::vector<Slave>& slaves() { return slaves_; }
@@ -121,6 +122,9 @@ private:
   bool step_to(Slave& slave, AlState target);
   void configure_mailbox(Slave& slave, bool boot);
   void reset_line();
+  // AL control Init + acknowledge to every slave, then waits (up to the state timeout) until
+  // none is in another state; false if one still is.
+  bool line_to_init();
   void sleep_poll();
 
   std::unique_ptr<Clock> own_clock_;

@@ -6,6 +6,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
 #include <thread>
 
 #include "vdrive/fault/impaired_link.hpp"
@@ -114,6 +120,47 @@ TEST_F(FaultServiceTest, FaultEndsAtItsDeadlineThroughPoll) {
   EXPECT_TRUE(service_.injector().active().empty());
   EXPECT_FALSE(impaired_.engaged());
   EXPECT_EQ(round_trip(), 2);
+}
+
+// What `vdrive run` shows at info level: captures the default logger's lines while it lives.
+class CapturedLog {
+public:
+  CapturedLog() : sink_(std::make_shared<spdlog::sinks::ostream_sink_mt>(text_)) {
+    sink_->set_pattern("%v");
+    spdlog::default_logger()->sinks().push_back(sink_);
+    level_ = spdlog::default_logger()->level();
+    spdlog::default_logger()->set_level(spdlog::level::info);
+  }
+  ~CapturedLog() {
+    auto& sinks = spdlog::default_logger()->sinks();
+    sinks.erase(std::remove(sinks.begin(), sinks.end(), sink_), sinks.end());
+    spdlog::default_logger()->set_level(level_);
+  }
+  std::string text() const { return text_.str(); }
+
+private:
+  std::ostringstream text_;
+  std::shared_ptr<spdlog::sinks::ostream_sink_mt> sink_;
+  spdlog::level::level_enum level_;
+};
+
+TEST_F(FaultServiceTest, AFaultEndingByItsDurationIsLogged) {
+  const CapturedLog log;
+  ASSERT_TRUE(service_.handle(inject(fault::FaultKind::drop, 100'000'000), clock_.now()).ok());
+  ASSERT_TRUE(service_.handle(inject(fault::FaultKind::duplicate), clock_.now()).ok());
+  EXPECT_THAT(log.text(), HasSubstr("fault 1 injected: drop"));
+  clock_.advance(99'000'000);
+  service_.poll(clock_.now());
+  EXPECT_THAT(log.text(), ::testing::Not(HasSubstr("ended")));
+  clock_.advance(1'000'000);
+  service_.poll(clock_.now());
+  EXPECT_THAT(log.text(), HasSubstr("fault 1 ended: its duration ran out (drop both ways p=1 for 100000 us)\n"));
+  EXPECT_THAT(log.text(), ::testing::Not(HasSubstr("fault 2 ended"))) << "the other one lasts until cleared";
+  clock_.advance(1'000'000'000);
+  service_.poll(clock_.now());
+  EXPECT_EQ(service_.injector().active().size(), 1u);
+  const std::string once = log.text();
+  EXPECT_EQ(once.find("fault 1 ended"), once.rfind("fault 1 ended")) << "logged once";
 }
 
 TEST_F(FaultServiceTest, DelayedRepliesLeaveAtTheirTime) {

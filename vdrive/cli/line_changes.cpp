@@ -11,8 +11,13 @@
 namespace vdrive::cli {
 namespace {
 
-std::string alarm_text(const profile::ProductProfile& p, std::uint16_t error_code) {
-  if (const profile::AlarmSpec* a = p.alarm_with_error_code(error_code)) {
+// The alarm the drive says it raised; by 603Fh only when it does not say, since one 603Fh can be
+// several alarms (A6B FF51h is Err81.0, 81.1, 81.4, 81.5 and 81.6, L32610-L32618).
+std::string alarm_text(const profile::ProductProfile& p, std::uint16_t error_code, int index) {
+  const profile::AlarmSpec* a = index >= 0 && static_cast<std::size_t>(index) < p.alarms.size()
+                                    ? &p.alarms[static_cast<std::size_t>(index)]
+                                    : p.alarm_with_error_code(error_code);
+  if (a != nullptr) {
     const std::string& name = a->name_en.empty() ? a->name : a->name_en;
     return fmt::format("alarm {} {} (603Fh {:04X}h)", a->code, name, error_code);
   }
@@ -38,8 +43,8 @@ std::vector<std::string> line_changes(const runtime::StatusSample& before, const
                                   master::al_status_code_text(a.al_status_code), runtime::al_state_name(a.al_status)));
     else if (was_error && !is_error)
       lines.push_back(fmt::format("{}: AL error acknowledged", who));
-    if (a.error_code != b.error_code)
-      lines.push_back(a.error_code != 0 ? fmt::format("{}: {}", who, alarm_text(p, a.error_code))
+    if (a.error_code != b.error_code || (a.error_code != 0 && a.alarm != b.alarm))
+      lines.push_back(a.error_code != 0 ? fmt::format("{}: {}", who, alarm_text(p, a.error_code, a.alarm))
                                         : fmt::format("{}: alarm cleared", who));
   }
   return lines;

@@ -282,7 +282,7 @@ void run(RunOptions o) {
                o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
   if (control) spdlog::info("fault control on {}", control->path());
   runtime::LoopCounters counters;
-  RunStatus status(o.status, *network, counters);  // the live status line (run_status.hpp)
+  RunStatus status(o.status, *network, counters, &wire);  // the live status line (run_status.hpp)
   const std::unique_ptr<telemetry::LineTelemetry> telemetry =
       start_run_telemetry(o.telemetry, *network, impaired, clock, counters, &faults, [&waker] { waker.wake(); });
   const std::unique_ptr<web::WebServer> page =

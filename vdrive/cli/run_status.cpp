@@ -14,6 +14,7 @@
 #include <mutex>
 
 #include "vdrive/cli/line_changes.hpp"
+#include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/network/network.hpp"
 
 namespace vdrive::cli {
@@ -46,6 +47,15 @@ private:
 
 }  // namespace
 
+runtime::WireLosses wire_losses(const fault::WireImpairment& wire) {
+  runtime::WireLosses losses;
+  for (const fault::Direction d : {fault::Direction::to_slaves, fault::Direction::to_master}) {
+    losses.dropped += wire.counters(d).dropped;
+    losses.corrupted += wire.counters(d).corrupted;
+  }
+  return losses;
+}
+
 void add_status_options(CLI::App* cmd, StatusMode& mode) {
   CLI::Option* on = cmd->add_flag_callback("--status", [&mode] { mode = StatusMode::on; },
                                            "Show the live status line on stderr even when it is not a terminal (one line a second)");
@@ -54,8 +64,9 @@ void add_status_options(CLI::App* cmd, StatusMode& mode) {
   on->excludes(off);
 }
 
-RunStatus::RunStatus(StatusMode mode, network::Network& network, const runtime::LoopCounters& counters)
-    : terminal_(::isatty(STDERR_FILENO) != 0), network_(network), counters_(counters), status_(network.size()) {
+RunStatus::RunStatus(StatusMode mode, network::Network& network, const runtime::LoopCounters& counters,
+                     const fault::WireImpairment* wire)
+    : terminal_(::isatty(STDERR_FILENO) != 0), network_(network), counters_(counters), wire_(wire), status_(network.size()) {
   enabled_ = mode == StatusMode::on || (mode == StatusMode::automatic && terminal_);
 }
 
@@ -74,6 +85,7 @@ void RunStatus::stop() {
 // Sampled always: what changes is logged whether the status line is shown or not.
 runtime::LoopService* RunStatus::wrap(runtime::LoopService* next) {
   publisher_ = std::make_unique<runtime::LineStatusPublisher>(network_, status_, kPublishPeriod, next);
+  if (wire_ != nullptr) publisher_->set_wire_source([wire = wire_] { return wire_losses(*wire); });
   publisher_->sample();  // before the loop runs: the thread may read at once
   if (enabled_ && terminal_) {
     erase_sink_ = std::make_shared<EraseStatusSink>(drawn_);

@@ -1,6 +1,6 @@
 #pragma once
 // `vdrive run`'s live status line (docs/cli.md "Status line"): per slave AL state and error,
-// frames in/out and per second, ESC receive errors, dropped frames. On stderr, rewritten in
+// frames in/out and per second, ESC receive errors, dropped frames, frames a wire fault lost. On stderr, rewritten in
 // place 4 times a second when stderr is a terminal; `--status` forces it (not a terminal: one
 // line a second), `--no-status` turns it off. The loop's side is a runtime::LineStatusPublisher
 // (no lock, no allocation); a thread of its own formats and prints. On a terminal, a log line
@@ -16,6 +16,7 @@
 
 namespace CLI { class App; }
 namespace spdlog::sinks { class sink; }
+namespace vdrive::fault { class WireImpairment; }
 
 namespace vdrive::cli {
 
@@ -23,9 +24,14 @@ enum class StatusMode { automatic, on, off };
 
 void add_status_options(CLI::App* cmd, StatusMode& mode);
 
+// What the status line counts of a wire fault stage: both directions' dropped and corrupted frames.
+runtime::WireLosses wire_losses(const fault::WireImpairment& wire);
+
 class RunStatus {
 public:
-  RunStatus(StatusMode mode, network::Network& network, const runtime::LoopCounters& counters);
+  // `wire`: the wire fault stage the line is served behind (its losses are shown), or null.
+  RunStatus(StatusMode mode, network::Network& network, const runtime::LoopCounters& counters,
+            const fault::WireImpairment* wire = nullptr);
   ~RunStatus();  // stops the thread and ends the line
   RunStatus(const RunStatus&) = delete;
   RunStatus& operator=(const RunStatus&) = delete;
@@ -43,6 +49,7 @@ private:
   bool terminal_ = false;
   network::Network& network_;
   const runtime::LoopCounters& counters_;
+  const fault::WireImpairment* wire_;
   runtime::LineStatus status_;
   std::unique_ptr<runtime::LineStatusPublisher> publisher_;
   std::atomic<bool> stop_{false};

@@ -47,6 +47,9 @@ void FaultService::poll(Nanos now) {
   }
   if (next_armed() <= now) inject_armed(now);
   if (injector_.next_deadline() <= now) {
+    // Logged here, before tick() forgets them: an ending is as much news as the injection was.
+    for (const fault::ActiveFault& f : injector_.active())
+      if (f.ends <= now) spdlog::info("fault {} ended: its duration ran out ({})", f.id, fault::describe(f.spec));
     injector_.tick(now);
     changed();
   }

@@ -4,6 +4,8 @@
 // loop picks up in poll() through a lock-free SPSC queue and answers through another, waking
 // the caller with an eventfd. poll() with nothing pending is one atomic load plus a deadline
 // compare; faults with a duration end at their deadline (next_deadline() joins the loop's).
+// Every change is logged at info level, whoever asked (socket, DDS, the page, a network file):
+// injected, one-shot applied, cleared, and ended because its duration ran out.
 // After every change the ImpairedLink (if any) re-reads the wire settings, so a clean wire
 // costs the frame path one branch.
 #include <cstdint>

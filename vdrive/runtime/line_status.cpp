@@ -6,6 +6,7 @@
 #include <map>
 
 #include "ethercat/registers.hpp"
+#include "vdrive/drive/drive_engine.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/od/object_store.hpp"
 
@@ -34,7 +35,8 @@ void LineStatusPublisher::sample() {
     s.al_status = esc.peek_u16(kAlStatus);
     s.al_status_code = esc.peek_u16(kAlStatusCode);
     for (std::uint16_t a = kErrorCountersFirst; a <= kErrorCountersLast; ++a) s.rx_errors += esc.peek(a);
-    if (network_.firmware(i).drive() != nullptr) {
+    if (drive::DriveEngine* engine = network_.firmware(i).drive(); engine != nullptr) {
+      s.alarm = static_cast<std::int16_t>(engine->alarms().newest_index());
       od::ObjectStore& objects = network_.firmware(i).objects();
       if (const od::EntryDesc* e = objects.dictionary().find(kErrorCode, 0); e != nullptr && e->value_bytes >= 2) {
         const std::span<const std::uint8_t> raw = objects.raw(*e);
@@ -43,6 +45,7 @@ void LineStatusPublisher::sample() {
     }
     status_.publish(i, s);
   }
+  if (wire_source_) status_.publish_wire(wire_source_());
 }
 
 void LineStatusPublisher::poll(Nanos now) {
@@ -66,6 +69,7 @@ StatusSample take_sample(const LineStatus& status, const LoopCounters& counters,
   s.frames_out = counters.frames_out.load(std::memory_order_relaxed);
   s.dropped = counters.dropped.load(std::memory_order_relaxed);
   s.send_failed = counters.send_failed.load(std::memory_order_relaxed);
+  s.wire = status.wire();
   return s;
 }
 
@@ -108,6 +112,7 @@ std::string format_status_line(const StatusSample& now, const StatusSample* befo
     line += fmt::format(", {:.0f}/s", static_cast<double>(now.frames_in - before->frames_in) / seconds);
   }
   line += fmt::format(" | rx errors {} | dropped {} | send failed {}", rx_errors, now.dropped, now.send_failed);
+  if (now.wire) line += fmt::format(" | wire fault dropped {} corrupted {}", now.wire->dropped, now.wire->corrupted);
   return line;
 }
 

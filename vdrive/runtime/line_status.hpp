@@ -1,6 +1,6 @@
 #pragma once
 // LineStatus: what a status line shows of a served line (per slave: AL status, AL status code,
-// the ESC's receive error counters, a drive's 603Fh), written by the event loop's thread and read by another
+// the ESC's receive error counters, a drive's 603Fh and which alarm it is), written by the event loop's thread and read by another
 // (`vdrive run`'s status line). Fixed size, one 64-bit atomic per slave so each slave reads
 // consistently: no lock, no allocation on the loop. LineStatusPublisher is the writing side, a
 // LoopService that samples the ESCs a few times a second and passes poll() on to the service it
@@ -9,7 +9,10 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/clock.hpp"
@@ -29,27 +32,51 @@ struct SlaveStatus {
   std::uint16_t al_status_code = 0;  // register 0x0134
   std::uint32_t rx_errors = 0;       // sum of the error counters 0x0300-0x030C (invalid frames, RX, forwarded, processing unit)
   std::uint16_t error_code = 0;      // 603Fh of a drive (0 for other slaves)
+  std::int16_t alarm = -1;           // the drive's newest active alarm: its index in the product's alarm table, -1 none
+};
+
+// Frames a wire fault (`vdrive fault inject drop|corrupt ...`, fault::WireImpairment between the
+// master and slave 1) kept from their receiver, both directions together: dropped, and corrupted
+// (sent on with a bad FCS, which the receiver discards).
+struct WireLosses {
+  std::uint64_t dropped = 0;
+  std::uint64_t corrupted = 0;
 };
 
 class LineStatus {
 public:
   explicit LineStatus(std::size_t slaves) : slaves_(slaves < kMaxStatusSlaves ? slaves : kMaxStatusSlaves) {}
+  // A line served behind a wire fault stage: its losses are part of the status.
+  void publish_wire(const WireLosses& w) {
+    wire_dropped_.store(w.dropped, std::memory_order_relaxed);
+    wire_corrupted_.store(w.corrupted, std::memory_order_relaxed);
+    has_wire_.store(true, std::memory_order_release);
+  }
+  std::optional<WireLosses> wire() const {
+    if (!has_wire_.load(std::memory_order_acquire)) return std::nullopt;
+    return WireLosses{wire_dropped_.load(std::memory_order_relaxed), wire_corrupted_.load(std::memory_order_relaxed)};
+  }
   std::size_t slaves() const { return slaves_; }
   void publish(std::size_t i, const SlaveStatus& s) {
     packed_[i].store(std::uint64_t{s.al_status} | std::uint64_t{s.al_status_code} << 16 | std::uint64_t{s.rx_errors} << 32,
                      std::memory_order_relaxed);
-    error_codes_[i].store(s.error_code, std::memory_order_relaxed);
+    error_codes_[i].store(static_cast<std::uint32_t>(s.error_code) | static_cast<std::uint32_t>(static_cast<std::uint16_t>(s.alarm + 1)) << 16,
+                          std::memory_order_relaxed);
   }
   SlaveStatus slave(std::size_t i) const {
     const std::uint64_t v = packed_[i].load(std::memory_order_relaxed);
+    const std::uint32_t drive = error_codes_[i].load(std::memory_order_relaxed);
     return {static_cast<std::uint16_t>(v), static_cast<std::uint16_t>(v >> 16), static_cast<std::uint32_t>(v >> 32),
-            error_codes_[i].load(std::memory_order_relaxed)};
+            static_cast<std::uint16_t>(drive), static_cast<std::int16_t>(static_cast<int>(drive >> 16) - 1)};
   }
 
 private:
   std::size_t slaves_;
   std::array<std::atomic<std::uint64_t>, kMaxStatusSlaves> packed_{};
-  std::array<std::atomic<std::uint16_t>, kMaxStatusSlaves> error_codes_{};
+  // 603Fh | (alarm index + 1) << 16, read together; 0 (never published) is "no alarm".
+  std::array<std::atomic<std::uint32_t>, kMaxStatusSlaves> error_codes_{};
+  std::atomic<std::uint64_t> wire_dropped_{0}, wire_corrupted_{0};
+  std::atomic<bool> has_wire_{false};
 };
 
 // Reads the ESCs (side-effect-free peeks) every `period` on the loop's thread.
@@ -61,6 +88,10 @@ public:
   Nanos next_deadline() const override;
   // Samples now, whatever the period (also done by the first poll()).
   void sample();
+  // Where the wire fault stage's losses are read, on the loop's thread with the ESCs (this layer
+  // does not see the fault layer; `vdrive run` reads its fault::WireImpairment). Set before the
+  // loop starts; must not allocate.
+  void set_wire_source(std::function<WireLosses()> source) { wire_source_ = std::move(source); }
 
 private:
   network::Network& network_;
@@ -68,6 +99,7 @@ private:
   Nanos period_;
   LoopService* next_;
   Nanos due_ = 0;
+  std::function<WireLosses()> wire_source_;
 };
 
 // One reading of everything the line shows, taken by the status thread.
@@ -75,10 +107,12 @@ struct StatusSample {
   Nanos time = 0;  // when it was taken (any monotonic clock)
   std::vector<SlaveStatus> slaves;
   std::uint64_t frames_in = 0, frames_out = 0, dropped = 0, send_failed = 0;
+  std::optional<WireLosses> wire;  // none: no wire fault stage
 };
 StatusSample take_sample(const LineStatus& status, const LoopCounters& counters, Nanos now);
 
-// "3 slaves 1:Op 2:Op 3:SafeOp+E(001B) | frames 5210 in 5210 out, 1000/s | rx errors 0 | dropped 0 | send failed 0";
+// "3 slaves 1:Op 2:Op 3:SafeOp+E(001B) | frames 5210 in 5210 out, 1000/s | rx errors 0 | dropped 0 | send failed 0
+// | wire fault dropped 0 corrupted 0" (the last part only with a wire fault stage);
 // the rate is frames in per second since `before` (none when there is no earlier sample). With
 // more than 8 slaves the states are counted instead ("40 slaves Op 39, SafeOp+E 1 (first: 7 001B)").
 std::string format_status_line(const StatusSample& now, const StatusSample* before);

@@ -186,4 +186,8 @@ void AlarmManager::emit(const ecat::coe::Emergency& e) const {
   sink_(e);
 }
 
+int AlarmManager::newest_index() const {
+  return newest_ == nullptr ? -1 : static_cast<int>(newest_ - ctx_.profile.alarms.data());
+}
+
 }  // namespace vdrive::drive

@@ -57,6 +57,9 @@ public:
   bool warning() const { return warning_count_ > 0; }    // 6041h bit 7
   bool is_active(const profile::AlarmSpec& alarm) const;
   const profile::AlarmSpec* newest() const { return newest_; }
+  // The newest active alarm's position in the product's alarm table (profile.alarms), or -1: which
+  // alarm it is where several share one 603Fh (A6B Err81.0-81.6 are all FF51h).
+  int newest_index() const;
   std::uint16_t error_code() const;                      // 603Fh (0 = none)
   std::uint8_t error_register() const { return error_register_; }   // 1001h
   bool is_communication(const profile::AlarmSpec& alarm) const { return is_communication_alarm(alarm); }
