@@ -37,13 +37,18 @@ protected:
   }
   // Runs to Op with DC; after `healthy` cycles in Op `inject` runs, then the cycles go on until
   // slave `watched` shows the AL error flag (or the run ends).
-  OpRunResult run(std::size_t watched, const std::function<void()>& inject, int healthy = 100) {
+  // Op with DC at 1 ms for 600 cycles, staying in Op at the end.
+  static OpRunOptions options() {
     OpRunOptions o;
     o.cycle = 1 * kMs;
     o.cycles = 600;
     o.drift_frames = 200;
     o.mailbox_timeout = 20 * kMs;
     o.back_to_init = false;
+    return o;
+  }
+  OpRunResult run(std::size_t watched, const std::function<void()>& inject, int healthy = 100) {
+    OpRunOptions o = options();
     // A6B Err80.7: lost sync after 3 consecutive missing SYNC0 (3742h bits 3-0; 0 = never).
     o.preop = [](Master& m) { m.sdo(0).download_value<std::int16_t>(0x3742, 0, 3); };
     int cycles = 0;
@@ -83,12 +88,7 @@ TEST_F(EscFaultsInOp, WkcErrorCostsTheCyclicFrameItsShareOfTheWorkingCounter) {
 }
 
 TEST_F(EscFaultsInOp, WithRecoverTheMasterTakesTheLineBackToOpOnceTheCauseIsGone) {
-  OpRunOptions o;
-  o.cycle = 1 * kMs;
-  o.cycles = 600;
-  o.drift_frames = 200;
-  o.mailbox_timeout = 20 * kMs;
-  o.back_to_init = false;
+  OpRunOptions o = options();
   o.recover = true;
   int cycles = 0;
   o.done = [&] {

@@ -309,11 +309,6 @@ TEST(WebApi, BeyondLoopbackChangesNeedTheToken) {
   EXPECT_EQ(r->status, 201);
 }
 
-}  // namespace
-}  // namespace vdrive::web::test
-
-namespace vdrive::web::test {
-namespace {
 
 // The served description and the server agree: every path and method it lists is answered by a
 // route of its own (never the catch-all "no endpoint"), and every answer is JSON or the page.
@@ -358,11 +353,6 @@ TEST(WebApi, EveryDescribedEndpointExists) {
   EXPECT_GE(checked, 20u);
 }
 
-}  // namespace
-}  // namespace vdrive::web::test
-
-namespace vdrive::web::test {
-namespace {
 
 TEST(WebApi, AlarmsAreTheProductsTable) {
   WebLine line;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/web/cia402_text.hpp"
 #include "vdrive/web/line_record.hpp"
 #include "vdrive/web/loop_calls.hpp"
@@ -97,11 +98,6 @@ TEST(Cia402Text, StatewordsAndModesInWords) {
   EXPECT_EQ(mode_name(-1), "mode -1");
 }
 
-}  // namespace
-}  // namespace vdrive::web
-
-namespace vdrive::web {
-namespace {
 
 TEST(LoopCalls, AClosedLoopAnswersAtOnce) {
   LoopCalls calls;
@@ -115,11 +111,6 @@ TEST(LoopCalls, AClosedLoopAnswersAtOnce) {
   EXPECT_FALSE(ran);
 }
 
-}  // namespace
-}  // namespace vdrive::web
-
-namespace vdrive::web {
-namespace {
 
 TEST(LineRecord, AScenarioIsDecidedOnceEveryExpectationIs) {
   LineRecord record({}, LineIdentity{}, 0);
@@ -140,13 +131,6 @@ TEST(LineRecord, AScenarioIsDecidedOnceEveryExpectationIs) {
   EXPECT_EQ(s["elapsed_ns"], 3'000'000'000) << "never past the duration";
 }
 
-}  // namespace
-}  // namespace vdrive::web
-
-#include "vdrive/profile/profile_loader.hpp"
-
-namespace vdrive::web {
-namespace {
 
 TEST(LineRecord, AnAlarmValueSeveralAlarmsShareNamesThemAll) {
   const profile::ProductProfile a6b = profile::load_profile("a6b");
@@ -170,11 +154,6 @@ TEST(LineRecord, AnAlarmValueSeveralAlarmsShareNamesThemAll) {
   EXPECT_NE(events[1]["text"].get<std::string>().find("12.0 "), std::string::npos) << events[1]["text"];
 }
 
-}  // namespace
-}  // namespace vdrive::web
-
-namespace vdrive::web {
-namespace {
 
 TEST(LineRecord, AnSdoAbortAMasterGotIsAnEvent) {
   SlaveInfo s;
