@@ -444,8 +444,8 @@ void Plant::Impl::substep(double t) {
     const bool released = a.brake_control.value_or(a.cmd.brake_released);
     const bool braked = a.spec.brake.fitted && !released && !a.faults.brake_failure;
     const double ext = load_at(a.spec.load_profile, t) + a.ext_load + a.faults.added_force;
-    double load_force = ext - a.spec.friction.viscous * j.vel;
-    double dry = dry_friction(a.spec.friction, std::abs(j.vel));
+    double load_force = ext - a.faults.friction_scale * a.spec.friction.viscous * j.vel;
+    double dry = a.faults.friction_scale * dry_friction(a.spec.friction, std::abs(j.vel));
     if (a.two_mass) {
       const double d = a.twist(j);
       double fc = tr.stiffness * d;
@@ -716,6 +716,7 @@ void Plant::set_axis_faults(std::size_t axis, const AxisFaults& f) {
   const std::string where = "axis '" + a.spec.name + "': ";
   if (!(f.load_scale > 0) || !std::isfinite(f.load_scale)) fail(where + "load_scale must be a finite number > 0");
   if (!std::isfinite(f.added_force)) fail(where + "added_force must be finite");
+  if (!(f.friction_scale >= 0) || !std::isfinite(f.friction_scale)) fail(where + "friction_scale must be a finite number >= 0");
   if (f.obstacle && !std::isfinite(*f.obstacle)) fail(where + "obstacle must be finite");
   if (f.load_scale != a.faults.load_scale) {
     if (a.two_mass) {  // the explicit coupling spring must stay stable with the lighter load (see build)

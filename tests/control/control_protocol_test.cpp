@@ -47,6 +47,8 @@ TEST(ControlProtocol, PerKindFields) {
   EXPECT_EQ(parse_request(R"({"op":"inject","fault":{"kind":"alarm","slave":1,"code":"Er16.0"}})").fault.alarm, "Er16.0");
   const ControlRequest lc = parse_request(R"({"op":"inject","fault":{"kind":"load_change","slave":1,"load_scale":2.5,"force":-3}})");
   EXPECT_DOUBLE_EQ(lc.fault.load_scale, 2.5);
+  EXPECT_DOUBLE_EQ(lc.fault.friction_scale, 1.0) << "friction as it was unless asked";
+  EXPECT_DOUBLE_EQ(parse_request(R"({"op":"inject","fault":{"kind":"load_change","slave":1,"friction_scale":3}})").fault.friction_scale, 3.0);
   EXPECT_DOUBLE_EQ(lc.fault.force, -3.0);
   EXPECT_EQ(parse_request(R"({"op":"inject","fault":{"kind":"link_down","slave":2,"duration":"1s"}})").fault.slave, 2);
   const ControlRequest at_port = parse_request(R"({"op":"inject","fault":{"kind":"link_down","slave":1,"port":3}})");
@@ -126,6 +128,8 @@ TEST(ControlProtocol, RefusalsNameWhatWasWrong) {
   EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"alarm","slave":1}})"), HasSubstr("\"code\" is missing"));
   EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"collision","slave":1}})"), HasSubstr("\"position\" is missing"));
   EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"load_change","slave":1,"load_scale":0}})"), HasSubstr("must be > 0"));
+  EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"load_change","slave":1,"friction_scale":-0.5}})"),
+              HasSubstr("friction_scale\": -0.5 must be >= 0"));
   EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"sdo_abort","slave":1,"abort_code":"0xZZ"}})"),
               HasSubstr("is not an integer"));
   EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"toggle_error","slave":1,"duration":"1s"}})"),

@@ -137,6 +137,27 @@ TEST(PlantAxisFaults, AddedForceAcceleratesTheLoad) {
   EXPECT_NEAR(p.feedback(0).load_velocity / 0.5, f / (jl + jr), 0.01 * f / (jl + jr));
 }
 
+TEST(PlantAxisFaults, FrictionScaleScalesViscousAndDryFriction) {
+  // Viscous b: the speed settles where the torque meets the friction, w = (T - Fc) / b. The time
+  // constant J / b is 8 ms here, so 0.3 s is steady.
+  const double t = 0.5, b = 0.05, coulomb = 0.1;
+  for (const double scale : {1.0, 2.0, 0.0}) {
+    SCOPED_TRACE(scale);
+    PlantDescription d = rotary(3e-4, 1e-4);
+    d.axes[0].friction.viscous = b;
+    d.axes[0].friction.coulomb = coulomb;
+    Plant p(d);
+    p.set_axis_faults(0, {.friction_scale = scale});
+    run(p, 0.3, torque(t));
+    const double w = p.feedback(0).load_velocity;
+    if (scale == 0.0) {
+      EXPECT_NEAR(w, t / 4e-4 * 0.3, 0.02 * t / 4e-4 * 0.3) << "no friction: a = T / J all along";
+    } else {
+      EXPECT_NEAR(w, (t - scale * coulomb) / (scale * b), 0.02 * (t - scale * coulomb) / (scale * b));
+    }
+  }
+}
+
 TEST(PlantAxisFaults, FailedBrakeDoesNotHoldAGravityLoad) {
   Plant p(vertical_axis());
   AxisCommand engaged;
@@ -153,6 +174,7 @@ TEST(PlantAxisFaults, BadValuesAreRefused) {
   EXPECT_THROW(p.set_axis_faults(0, {.load_scale = 0.0}), PlantError);
   EXPECT_THROW(p.set_axis_faults(0, {.added_force = std::nan("")}), PlantError);
   EXPECT_THROW(p.set_axis_faults(0, {.obstacle = INFINITY}), PlantError);
+  EXPECT_THROW(p.set_axis_faults(0, {.friction_scale = -1.0}), PlantError);
   EXPECT_THROW(p.set_axis_faults(3, {}), std::out_of_range);
   EXPECT_EQ(p.axis_faults(0).load_scale, 1.0) << "a refused change leaves the faults as they were";
 }

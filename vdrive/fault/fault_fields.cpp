@@ -41,6 +41,7 @@ std::vector<FaultFieldInfo> fault_fields(FaultKind kind) {
     case K::load_change:
       f.push_back({"load_scale", "real", false, "1", "", "the load's inertia/mass factor (> 0)"});
       f.push_back({"force", "real", false, "0", "", "added external load (N or N m)"});
+      f.push_back({"friction_scale", "real", false, "1", "", "the load-side friction's factor (>= 0; 0: none)"});
       break;
     default:
       break;
@@ -101,6 +102,10 @@ FaultSpec read_fault(FaultFieldSource& src, int max_slave) {
         if (!(f.load_scale > 0.0)) src.out_of_range("load_scale", "must be > 0");
       }
       if (src.has("force")) f.force = src.real("force");
+      if (src.has("friction_scale")) {
+        f.friction_scale = src.real("friction_scale");
+        if (!(f.friction_scale >= 0.0)) src.out_of_range("friction_scale", "must be >= 0");
+      }
       break;
     default:
       break;

@@ -1,6 +1,7 @@
 #include "vdrive/fault/fault_injector.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <fmt/format.h>
@@ -70,6 +71,8 @@ void FaultInjector::check(const FaultSpec& s) const {
   }
   if (s.kind == FaultKind::load_change && !(s.load_scale > 0.0))
     throw FaultError(fmt::format("{}: load_scale must be > 0", where()));
+  if (s.kind == FaultKind::load_change && !(s.friction_scale >= 0.0 && std::isfinite(s.friction_scale)))
+    throw FaultError(fmt::format("{}: friction_scale must be >= 0", where()));
 }
 
 int FaultInjector::inject(const FaultSpec& spec, Nanos now) {
@@ -178,6 +181,7 @@ void FaultInjector::apply_plant(int slave) {
       case FaultKind::load_change:
         a.load_scale *= f.spec.load_scale;
         a.added_force += f.spec.force;
+        a.friction_scale *= f.spec.friction_scale;
         break;
       case FaultKind::brake_failure: a.brake_failure = true; break;
       default: break;

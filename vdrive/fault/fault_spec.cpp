@@ -35,7 +35,7 @@ constexpr std::array<FaultKindInfo, 26> kCatalogue{{
     {K::alarm, "alarm", L::drive, true, "any alarm of the product's table, by its code"},
     {K::jam, "jam", L::plant, false, "the load seizes where it is"},
     {K::collision, "collision", L::plant, false, "a hard obstacle appears at `position`"},
-    {K::load_change, "load_change", L::plant, false, "load inertia times `load_scale`, plus `force`"},
+    {K::load_change, "load_change", L::plant, false, "load inertia times `load_scale`, plus `force`, friction times `friction_scale`"},
     {K::brake_failure, "brake_failure", L::plant, false, "the holding brake does not hold"},
 }};
 
@@ -86,7 +86,10 @@ std::string describe(const FaultSpec& s) {
     case K::sdo_abort: text += fmt::format(" slave {} abort 0x{:08X}", s.slave, s.abort_code); break;
     case K::alarm: text += fmt::format(" slave {} code {}", s.slave, s.alarm); break;
     case K::collision: text += fmt::format(" slave {} at {}", s.slave, s.position); break;
-    case K::load_change: text += fmt::format(" slave {} x{} +{}", s.slave, s.load_scale, s.force); break;
+    case K::load_change:
+      text += fmt::format(" slave {} x{} +{}", s.slave, s.load_scale, s.force);
+      if (s.friction_scale != 1.0) text += fmt::format(" friction x{}", s.friction_scale);
+      break;
     default: text += fmt::format(" slave {}", s.slave); break;
   }
   if (!i.one_shot && s.duration > 0) text += fmt::format(" for {} us", s.duration / 1000);

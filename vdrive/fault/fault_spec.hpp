@@ -63,6 +63,7 @@ struct FaultSpec {
   double position = 0.0;                       // collision: the obstacle's load position
   double load_scale = 1.0;                     // load_change: inertia/mass factor
   double force = 0.0;                          // load_change: added external load (N or N m)
+  double friction_scale = 1.0;                 // load_change: load-side friction factor (>= 0)
 };
 
 // "drop to_master p=0.5 for 100 ms" and the like, for logs and reports.
