@@ -11,9 +11,9 @@
 #include <optional>
 #include <string>
 
-#include "ethercat/little_endian.hpp"
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/od/access_text.hpp"
+#include "vdrive/od/entry_value.hpp"
 #include "vdrive/cli/product_source.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -45,12 +45,7 @@ std::uint16_t parse_index(const std::string& text) {
   return static_cast<std::uint16_t>(value);
 }
 
-std::int64_t integer_value(const od::EntryDesc& e) {
-  std::uint64_t raw = ecat::get_le(e.default_value);
-  const std::size_t bits = 8 * std::min<std::size_t>(e.default_value.size(), 8);
-  if (od::is_signed(e.type) && bits < 64 && (raw >> (bits - 1)) & 1) raw |= ~std::uint64_t{0} << bits;
-  return static_cast<std::int64_t>(raw);
-}
+std::int64_t integer_value(const od::EntryDesc& e) { return od::entry_integer(e, e.default_value); }
 
 std::string string_value(const od::EntryDesc& e) {
   const auto nul = std::find(e.default_value.begin(), e.default_value.end(), std::uint8_t{0});

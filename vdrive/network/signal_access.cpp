@@ -7,6 +7,7 @@
 
 #include "plant/plant.hpp"
 #include "vdrive/od/dictionary.hpp"
+#include "vdrive/od/entry_value.hpp"
 
 namespace vdrive::network {
 namespace {
@@ -58,13 +59,8 @@ std::int64_t SignalAccess::read() const {
 }
 
 void SignalAccess::check(std::int64_t value) const {
-  const std::int64_t min = plant_ != nullptr || !signed_ ? 0
-                           : bits_ == 64                 ? std::numeric_limits<std::int64_t>::min()
-                                                         : -(std::int64_t{1} << (bits_ - 1));
-  const std::int64_t max = plant_ != nullptr ? 1
-                           : bits_ == 64     ? std::numeric_limits<std::int64_t>::max()
-                           : signed_         ? (std::int64_t{1} << (bits_ - 1)) - 1
-                                             : static_cast<std::int64_t>((std::uint64_t{1} << bits_) - 1u);
+  const od::IntegerRange range = plant_ != nullptr ? od::IntegerRange{0, 1} : od::integer_range(bits_, signed_);
+  const std::int64_t min = range.min, max = range.max;
   if (value < min || value > max) throw std::out_of_range(fmt::format("{} is outside {}..{}", value, min, max));
 }
 

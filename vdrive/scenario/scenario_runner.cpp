@@ -17,6 +17,7 @@
 #include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/network/network.hpp"
+#include "vdrive/od/entry_value.hpp"
 #include "vdrive/od/object_store.hpp"
 #include "vdrive/scenario/axis_control.hpp"
 #include "vdrive/scenario/event_log.hpp"
@@ -327,11 +328,7 @@ private:
     std::optional<std::int64_t> value;
     try {
       const std::vector<std::uint8_t> bytes = master("sdo_read").sdo(i).upload(a.index, a.subindex);
-      std::uint64_t raw = 0;
-      const std::size_t n = std::min<std::size_t>(bytes.size(), 8);
-      for (std::size_t b = 0; b < n; ++b) raw |= static_cast<std::uint64_t>(bytes[b]) << (8 * b);
-      if (n > 0 && n < 8 && od::is_signed(entry->type) && ((raw >> (8 * n - 1)) & 1u)) raw |= ~std::uint64_t{0} << (8 * n);
-      value = static_cast<std::int64_t>(raw);
+      value = od::entry_integer(*entry, bytes);
       outcome = fmt::format("{}", *value);
     } catch (const master::SdoAbort& e) {
       outcome = fmt::format("aborted: {}", e.what());

@@ -15,7 +15,9 @@
 #include "ethercat/registers.hpp"
 #include "master/coe.hpp"
 #include "vdrive/network/network.hpp"
+#include "common/number_text.hpp"
 #include "vdrive/od/access_text.hpp"
+#include "vdrive/od/entry_value.hpp"
 #include "vdrive/od/object_store.hpp"
 
 namespace vdrive::web {
@@ -32,14 +34,6 @@ std::string hex_of(const std::vector<std::uint8_t>& bytes) {
   std::string out;
   for (const std::uint8_t b : bytes) out += fmt::format("{:02x}", b);
   return out;
-}
-
-std::int64_t integer_of(const od::EntryDesc& e, const std::vector<std::uint8_t>& bytes) {
-  std::uint64_t raw = 0;
-  const std::size_t n = std::min<std::size_t>(bytes.size(), 8);
-  for (std::size_t i = 0; i < n; ++i) raw |= static_cast<std::uint64_t>(bytes[i]) << (8 * i);
-  if (od::is_signed(e.type) && n > 0 && n < 8 && ((raw >> (8 * n - 1)) & 1)) raw |= ~std::uint64_t{0} << (8 * n);
-  return static_cast<std::int64_t>(raw);
 }
 
 std::string abort_hex(od::SdoAbort a) { return fmt::format("0x{:08X}", static_cast<std::uint32_t>(a)); }
@@ -62,19 +56,12 @@ ecat::AlState al_state_of(network::Network& network, std::size_t slave) {
 }  // namespace
 
 std::optional<std::uint32_t> parse_object_number(const std::string& text, std::uint32_t max) {
-  std::string s = text;
-  int base = 10;
-  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
-    s = s.substr(2);
-    base = 16;
-  } else if (s.size() > 1 && (s.back() == 'h' || s.back() == 'H')) {
-    s.pop_back();
-    base = 16;
-  }
-  std::uint32_t v = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v, base);
-  if (s.empty() || ec != std::errc{} || end != s.data() + s.size() || v > max) return std::nullopt;
-  return v;
+  // The manuals' "6040h" is hex too.
+  const bool prefixed = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+  const bool suffixed = !prefixed && text.size() > 1 && (text.back() == 'h' || text.back() == 'H');
+  const std::optional<std::uint64_t> v = parse_unsigned(suffixed ? "0x" + text.substr(0, text.size() - 1) : text);
+  if (!v || *v > max) return std::nullopt;
+  return static_cast<std::uint32_t>(*v);
 }
 
 json entry_json(const od::EntryDesc& e) {
@@ -138,9 +125,9 @@ json decode_value(const od::EntryDesc& e, const std::vector<std::uint8_t>& bytes
     std::memcpy(&f, bytes.data(), 4);
     value = std::isfinite(f) ? json(static_cast<double>(f)) : json(nullptr);
   } else if (e.type == od::DataType::Unsigned64) {
-    value = static_cast<std::uint64_t>(integer_of(e, bytes));
+    value = static_cast<std::uint64_t>(od::entry_integer(e, bytes));
   } else {
-    value = integer_of(e, bytes);
+    value = od::entry_integer(e, bytes);
   }
   return {{"value", std::move(value)}, {"hex", hex_of(bytes)}};
 }
@@ -190,11 +177,10 @@ std::variant<std::vector<std::uint8_t>, ApiResult> encode_value(const od::EntryD
   const std::size_t size = e.value_bytes;
   const unsigned bits = std::min<unsigned>(e.bit_length, 64);
   if (bits < 64) {
-    const bool is_signed = od::is_signed(e.type);
-    const std::int64_t lo = is_signed ? -(std::int64_t{1} << (bits - 1)) : 0;
-    const std::int64_t hi = is_signed ? (std::int64_t{1} << (bits - 1)) - 1 : static_cast<std::int64_t>((std::uint64_t{1} << bits) - 1);
-    if (n < lo || n > hi)
-      return api_error(400, fmt::format("\"value\": {} does not fit {} {:04X}h:{:02X} ({}..{})", n, od::short_name(e.type), e.index, e.subindex, lo, hi));
+    const od::IntegerRange type = od::integer_range(bits, od::is_signed(e.type));
+    if (n < type.min || n > type.max)
+      return api_error(400, fmt::format("\"value\": {} does not fit {} {:04X}h:{:02X} ({}..{})", n, od::short_name(e.type), e.index,
+                                        e.subindex, type.min, type.max));
   }
   bytes.resize(size);
   for (std::size_t i = 0; i < size; ++i) bytes[i] = static_cast<std::uint8_t>(static_cast<std::uint64_t>(n) >> (8 * std::min<std::size_t>(i, 7)));
