@@ -76,6 +76,7 @@ void DcUnit::reset() {
   put_le(&regs_[kSpeedCounterStart], kSpeedCounterStartReset, 2);
   regs_[kDifferenceFilterDepth] = 0x04;
   regs_[kSpeedFilterDepth] = 0x0C;
+  return_latches_ = 0;
   system_offset_ = 0;
   system_delay_ = 0;
   corr_anchor_ = 0.0;
@@ -172,11 +173,20 @@ void DcUnit::compare_system_time(std::uint32_t received, Nanos now) {
 void DcUnit::latch_receive_times(const FrameTiming& timing) {
   ++version_;
   const Nanos ports[4] = {timing.port0_rx, timing.port1_rx, timing.port2_rx, timing.port3_rx};
+  return_latches_ = 0;
   for (int p = 0; p < 4; ++p) {
+    if (ports[p] == FrameTiming::kLater) return_latches_ |= static_cast<std::uint8_t>(1U << p);
     if (ports[p] < 0) continue;
     put_le(&regs_[kReceiveTimePort0 + 4 * p], local_time(ports[p]), 4);
   }
   if (timing.port0_rx >= 0) put_le(&regs_[kReceiveTimeEpu], local_time(timing.port0_rx), 8);
+}
+
+void DcUnit::frame_returned(int port, Nanos now) {
+  if (port < 1 || port > 3 || (return_latches_ & (1U << port)) == 0) return;
+  ++version_;
+  return_latches_ = static_cast<std::uint8_t>(return_latches_ & ~(1U << port));
+  put_le(&regs_[kReceiveTimePort0 + 4 * port], local_time(now), 4);
 }
 
 void DcUnit::load_pulse_length(std::uint16_t ten_ns_units) {

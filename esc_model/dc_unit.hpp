@@ -56,8 +56,12 @@ public:
   void write(std::uint16_t offset, std::span<const std::uint8_t> in, Nanos now, bool from_ecat);
 
   // A frame wrote 0x0900: latch the receive time of that frame at each port (local time).
-  // Ports with a negative time (closed) keep their previous value.
+  // Ports with a negative time (closed) keep their previous value; a port whose time is
+  // FrameTiming::kLater is latched by frame_returned().
   void latch_receive_times(const FrameTiming& timing);
+  // The frame that last latched receive times came back in at `port` (1..3) at global time `now`:
+  // latches it there if that port's time was kLater; otherwise (no latch pending) nothing changes.
+  void frame_returned(int port, Nanos now);
 
   // EEPROM word 2 (ESC configuration area) loads the SYNC pulse length 0x0982 (10 ns units);
   // the register is read-only on both sides otherwise.
@@ -99,6 +103,7 @@ private:
 
   const Clock& clock_;
   std::uint8_t regs_[0x100] = {};
+  std::uint8_t return_latches_ = 0;  // bit p: port p's receive time waits for frame_returned()
   double drift_ppm_ = 0.0;
   Nanos start_offset_ = 0;
   std::int64_t system_offset_ = 0;     // 0x0920

@@ -168,6 +168,8 @@ bool Esc::port_forwards(int port) const {
   return impl_->port_implemented(port) && impl_->links.port[port] && !impl_->loop_closed(port);
 }
 
+void Esc::frame_returned(int port, Nanos now) { impl_->dc.frame_returned(port, now); }
+
 void Esc::pdi_read(std::uint16_t address, std::span<std::uint8_t> out) {
   Impl& d = *impl_;
   d.access_now = d.clock.now();

@@ -65,6 +65,10 @@ public:
   // (0x0007), link up and not closed by loop control (DL control 0x0100); otherwise the port is
   // looped back inside the ESC and the frame goes on to the next port in the order 0-3-1-2.
   bool port_forwards(int port) const;
+  // A frame that left through `port` (1..3) with its time FrameTiming::kLater (the cable there
+  // leads out of this process) came back at `now`: the DC receive-time latch of that frame, if it
+  // wrote 0x0900, takes its time at that port now.
+  void frame_returned(int port, Nanos now);
 
   // ---- PDI side (firmware) ----------------------------------------------------------------
   void pdi_read(std::uint16_t address, std::span<std::uint8_t> out);

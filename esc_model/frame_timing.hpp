@@ -6,12 +6,17 @@
 // ESC's order 0 -> 3 -> 1 -> 2 -> 0. Port N's time is when the frame comes back into port N
 // from the cable (the subtree) behind it, so a master reading 0x0900-0x090F sees, port by port,
 // how long each branch took. A port the frame does not leave through (closed, no link, not
-// implemented) has no time: -1.
+// implemented) has no time: -1. A port whose cable leads out of this process (the line goes on in
+// another process or on real slaves beyond a second interface) has its time only once the frame
+// comes back: kLater, and Esc::frame_returned() supplies it.
 #include "common/clock.hpp"
 
 namespace vdrive::esc {
 
 struct FrameTiming {
+  // The frame left through this port and has not come back yet.
+  static constexpr Nanos kLater = -2;
+
   Nanos port0_rx = 0;       // start of frame at port 0 (forward direction, processing happens here)
   Nanos port1_rx = -1;      // start of frame back at port 1; -1 when the frame does not leave there
   Nanos port2_rx = -1;

@@ -1,5 +1,8 @@
 #include "vdrive/cli/log_level.hpp"
 
+#include <cstdlib>
+#include <string>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -48,6 +51,9 @@ void add_log_level_options(CLI::App& app) {
   add_to(app);
   app.parse_complete_callback([&app] {
     auto logger = spdlog::stderr_color_mt("vdrive");
+    // A part of a line spread over processes (`run --processes`) names itself in every line.
+    if (const char* name = std::getenv("VDRIVE_LOG_NAME"); name != nullptr && *name != '\0')
+      logger->set_pattern(std::string("[%Y-%m-%d %H:%M:%S.%e] [") + name + "] [%^%l%$] %v");
     spdlog::set_default_logger(logger);
     spdlog::set_level(spdlog::level::from_str(chosen_level(app)));
   });

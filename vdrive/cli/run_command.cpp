@@ -11,7 +11,9 @@
 #include <cerrno>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
@@ -29,6 +31,7 @@
 #include "vdrive/link/tap_link.hpp"
 #include "plant/plant.hpp"
 #include "plant/plant_yaml.hpp"
+#include "vdrive/network/line_parts.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/esi/esi_import.hpp"
 #include "vdrive/machine/eni_reader.hpp"
@@ -37,6 +40,8 @@
 #include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/runtime/loop_waker.hpp"
 #include "vdrive/runtime/cpu_affinity.hpp"
+#include "vdrive/cli/part_processes.hpp"
+#include "vdrive/runtime/onward_link.hpp"
 #include "vdrive/runtime/time_slice.hpp"
 #include "vdrive/runtime/realtime.hpp"
 #include "vdrive/runtime/stop_signal.hpp"
@@ -47,6 +52,9 @@ namespace {
 struct RunOptions {
   std::string iface;
   std::string tap;
+  std::string next_iface;           // --next-iface: the line goes on out of the last slave's port 1 there
+  long processes = 1;               // --processes: the line cut into N parts, one process and core each
+  int ready_fd = -1;                // a part of --processes tells its parent here that it serves
   std::vector<std::string> drives;
   std::string network_file;         // --network: the slaves, topology, aliases and wires of a network file
   std::string eni;                  // --eni: the network a master's ENI describes
@@ -174,16 +182,37 @@ void apply_time_slice(const RunOptions& o) {
   spdlog::info("serving with the kernel's time slice: {}", why);
 }
 
+link::RawSocketLink::Options raw_socket_options(const RunOptions& o) {
+  link::RawSocketLink::Options options;
+  options.qdisc_bypass = !o.no_qdisc_bypass;
+  options.busy_poll = static_cast<Nanos>(o.busy_poll_us) * 1000;
+  options.rx_ring = !o.no_rx_ring;
+  return options;
+}
+
 std::unique_ptr<link::Link> open_link(const RunOptions& o) {
   try {
     if (!o.tap.empty()) return std::make_unique<link::TapLink>(o.tap);
-    link::RawSocketLink::Options options;
-    options.qdisc_bypass = !o.no_qdisc_bypass;
-    options.busy_poll = static_cast<Nanos>(o.busy_poll_us) * 1000;
-    options.rx_ring = !o.no_rx_ring;
-    return std::make_unique<link::RawSocketLink>(o.iface, options);
+    return std::make_unique<link::RawSocketLink>(o.iface, raw_socket_options(o));
   } catch (const link::LinkError& e) {
     throw CliError(exit_code_for(e.kind()), e.what());
+  }
+}
+
+// --next-iface: the onward port's interface, and the last slave's port 1 made the onward port.
+std::unique_ptr<link::Link> open_onward(const RunOptions& o, network::Network& network) {
+  if (o.next_iface.empty()) return nullptr;
+  try {
+    network.segment().set_onward_port();
+  } catch (const std::invalid_argument& e) {
+    throw CliError(kExitBadArguments, fmt::format("--next-iface: {}", e.what()));
+  }
+  try {
+    link::RawSocketLink::Options options = raw_socket_options(o);
+    options.busy_poll = 0;  // the master's link spins, if asked; the onward link is polled beside it
+    return std::make_unique<link::RawSocketLink>(o.next_iface, options);
+  } catch (const link::LinkError& e) {
+    throw CliError(exit_code_for(e.kind()), fmt::format("--next-iface: {}", e.what()));
   }
 }
 
@@ -208,7 +237,79 @@ void apply_network_file(const RunOptions& o, network::NetworkOptions& options) {
   }
 }
 
+void run(RunOptions o);
+
+// --plant N:FILE of the whole line, for the part holding slave N, renumbered within it (the
+// values were checked by load_plants).
+std::vector<std::string> plants_of_part(const std::vector<std::string>& plants, const std::vector<network::LinePart>& parts,
+                                        std::size_t part) {
+  std::vector<std::string> out;
+  for (const std::string& arg : plants) {
+    const std::size_t colon = arg.find(':');
+    const std::size_t slave = std::stoul(arg.substr(0, colon));
+    if (network::part_of(parts, slave) != part) continue;
+    out.push_back(fmt::format("{}:{}", slave - parts[part].first, arg.substr(colon + 1)));
+  }
+  return out;
+}
+
+// --processes N: parts 2..N in child processes chained over veth pairs, part 1 served here.
+void run_in_parts(RunOptions o) {
+  if (!o.network_file.empty())
+    throw CliError(kExitBadArguments, "--processes: a network file or ENI is served in one process; give the line as --drive lists");
+  if (!o.tap.empty()) throw CliError(kExitBadArguments, "--processes: serves on --iface, not --tap");
+  if (o.drives.empty()) throw CliError(kExitBadArguments, "no slaves: give --drive (repeat)");
+  check_products(o);
+  (void)load_plants(o);  // every plant file checked, positions as the user counts them
+  std::vector<network::LinePart> parts;
+  try {
+    parts = network::split_line(o.drives.size(), static_cast<std::size_t>(o.processes));
+  } catch (const std::invalid_argument& e) {
+    throw CliError(kExitBadArguments, fmt::format("--processes {}: {}", o.processes, e.what()));
+  }
+  const unsigned cpus = std::max(1U, std::thread::hardware_concurrency());
+  const int base_cpu = o.cpu >= 0 ? o.cpu : 0;
+  const auto cpu_of = [&](std::size_t k) { return static_cast<int>((static_cast<unsigned>(base_cpu) + k) % cpus); };
+  const std::string level(spdlog::level::to_string_view(spdlog::get_level()).data());
+  const auto child_args = [&](std::size_t k, const std::string& in, const std::string& next) {
+    std::vector<std::string> a{"run", "--iface", in};
+    const std::string onward = k + 1 < parts.size() ? next : o.next_iface;
+    if (!onward.empty()) a.insert(a.end(), {"--next-iface", onward});
+    a.push_back("--drive");
+    for (std::size_t i = parts[k].first; i < parts[k].first + parts[k].count; ++i) a.push_back(o.drives[i]);
+    for (const std::string& plant : plants_of_part(o.plants, parts, k)) a.insert(a.end(), {"--plant", plant});
+    a.insert(a.end(), {"--hop-delay", std::to_string(o.hop_delay), "--cpu", std::to_string(cpu_of(k)), "--fault-seed",
+                       std::to_string(o.fault_seed), "--no-control", "--no-status", "--log-level", level});
+    if (!o.profile_dir.empty()) a.insert(a.end(), {"--profile-dir", o.profile_dir});
+    if (o.foe_strict) a.push_back("--foe-strict");
+    if (o.rt_priority != 0) a.insert(a.end(), {"--rt-priority", std::to_string(o.rt_priority)});
+    if (o.slice_given) a.insert(a.end(), {"--slice-us", std::to_string(o.slice_us)});
+    if (o.busy_poll_us != 0) a.insert(a.end(), {"--busy-poll-us", std::to_string(o.busy_poll_us)});
+    if (o.no_rx_ring) a.push_back("--no-rx-ring");
+    if (o.no_qdisc_bypass) a.push_back("--no-qdisc-bypass");
+    return a;
+  };
+  PartProcesses others(parts, fmt::format("vd{}p", ::getpid() % 100000), child_args);
+  RunOptions first = o;
+  first.processes = 1;
+  first.drives.assign(o.drives.begin(), o.drives.begin() + static_cast<long>(parts[0].count));
+  first.plants = plants_of_part(o.plants, parts, 0);
+  first.next_iface = others.first_onward();
+  first.cpu = cpu_of(0);
+  spdlog::info("the line of {} slaves in {} processes: part 1 (slaves 1-{}) here on CPU {}", o.drives.size(),
+               parts.size(), parts[0].count, first.cpu);
+  run(first);
+  if (const std::vector<std::string> ended = others.ended_early(); !ended.empty())
+    throw CliError(kExitFailure, fmt::format("{}", fmt::join(ended, "; ")));
+}
+
 void run(RunOptions o) {
+  if (!o.next_iface.empty() && (o.next_iface == o.iface || o.next_iface == o.tap))
+    throw CliError(kExitBadArguments, fmt::format("--next-iface {}: the master is on that interface already", o.next_iface));
+  if (o.processes > 1) {
+    run_in_parts(std::move(o));
+    return;
+  }
   if (!o.network_file.empty()) {
     if (!o.plants.empty()) throw CliError(kExitBadArguments, "--plant: with --network, a slave's plant is in the network file");
     try {
@@ -256,6 +357,8 @@ void run(RunOptions o) {
     throw CliError(o.profile_dir.empty() ? kExitFailure : kExitBadArguments, e.what());
   }
 
+  const std::unique_ptr<link::Link> onward_link = open_onward(o, *network);
+
   if (o.rt_priority != 0) {
     const runtime::RealtimeResult rt = runtime::enter_realtime(o.rt_priority);
     if (rt.error != 0) {
@@ -280,6 +383,9 @@ void run(RunOptions o) {
   spdlog::info("serving {} slave(s) on {}: {} (hop delay {} ns{}); SIGINT/SIGTERM stops",
                o.drives.size(), where, fmt::join(o.drives, ", "), o.hop_delay,
                o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
+  if (onward_link)
+    spdlog::info("the line goes on through {} (port 1 of slave {}; link {})", o.next_iface,
+                 network->segment().onward_slave() + 1, onward_link->carrier() ? "up" : "down: the line ends here until it comes up");
   if (control) spdlog::info("fault control on {}", control->path());
   runtime::LoopCounters counters;
   RunStatus status(o.status, *network, counters, &wire);  // the live status line (run_status.hpp)
@@ -295,6 +401,11 @@ void run(RunOptions o) {
                                                     std::strerror(err)));
   }
   apply_time_slice(o);
+  if (o.ready_fd >= 0) {  // the parent of --processes waits for this before it serves
+    const char ready = 'R';
+    if (::write(o.ready_fd, &ready, 1) != 1) spdlog::warn("--ready-fd {}: {}", o.ready_fd, std::strerror(errno));
+    ::close(o.ready_fd);
+  }
   try {
     // The fault control is polled with the telemetry's sampler when there is one; the page's
     // requests need it polled too.
@@ -302,14 +413,20 @@ void run(RunOptions o) {
                                  : control || faults.has_armed() || page ? static_cast<runtime::LoopService*>(&faults) : nullptr;
     telemetry::LoopServices with_page(base, page ? &page->service() : nullptr);
     runtime::LoopService* services = page ? &with_page : base;
-    if (telemetry) runtime::serve(*network, telemetry->link(), clock, stop, counters, status.wrap(services));
-    else runtime::serve(*network, impaired, clock, stop, counters, status.wrap(services));
+    link::Link& to_master = telemetry ? telemetry->link() : static_cast<link::Link&>(impaired);
+    std::optional<runtime::OnwardLink> onward;
+    if (onward_link) onward.emplace(to_master, *onward_link, *network, clock, counters);
+    runtime::serve(*network, onward ? static_cast<link::Link&>(*onward) : to_master, clock, stop, counters,
+                   status.wrap(services));
   } catch (const link::LinkError& e) {  // the interface was removed while serving
     throw CliError(exit_code_for(e.kind()), e.what());
   }
   status.stop();  // its line ends before the summary
   spdlog::info("stopped: {} frames in, {} out, {} dropped, {} send failures", counters.frames_in.load(),
                counters.frames_out.load(), counters.dropped.load(), counters.send_failed.load());
+  if (onward_link)
+    spdlog::info("onward through {}: {} frames sent on, {} came back", o.next_iface, counters.onward.load(),
+                 counters.returned.load());
   if (telemetry) spdlog::info("telemetry: {} samples published, {} dropped (publisher behind)", telemetry->published(), telemetry->dropped());
   for (const fault::Direction d : {fault::Direction::to_slaves, fault::Direction::to_master}) {
     const fault::WireImpairment::Counters& c = wire.counters(d);
@@ -329,6 +446,14 @@ void add_run_command(CLI::App& app) {
       cmd->add_option("--iface,-i", o->iface, "Interface the master is cabled to (raw socket)");
   CLI::Option* tap = cmd->add_option("--tap", o->tap, "Create/attach TAP device NAME and serve on it");
   iface->excludes(tap);
+  cmd->add_option("--processes", o->processes,
+                  "Cut the line into N consecutive parts, each served by its own process pinned to its own core, "
+                  "chained over veth pairs made for the run (docs/scale-out.md); default 1")
+      ->check(CLI::Range(1L, 64L));
+  cmd->add_option("--ready-fd", o->ready_fd, "")->group("");  // a part of --processes tells its parent it serves
+  cmd->add_option("--next-iface", o->next_iface,
+                  "The line goes on through interface NAME: out of the last slave's port 1 to whatever is cabled "
+                  "there (another vdrive, real slaves) and back (docs/scale-out.md)");
   CLI::Option* drive = cmd->add_option("--drive,-d", o->drives,
                   "Product id of the next drive in cable order, or an ESI device FILE.xml[:PRODUCT[:REVISION]] (repeat)")
       ->take_all();

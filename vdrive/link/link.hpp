@@ -37,6 +37,12 @@ public:
   virtual bool frame_waiting() { return false; }
   // A pollable file descriptor, or -1 for links that are not backed by one.
   virtual int fd() const { return -1; }
+  // Whether the link has carrier (a cable plugged in, a veth peer up); links that cannot tell
+  // say true.
+  virtual bool carrier() { return true; }
+  // Sends a frame on through the onward port, to the part of the line beyond this process
+  // (runtime::OnwardLink); a link without one refuses it.
+  virtual bool send_onward(std::span<const std::uint8_t> frame) { return frame.empty(); }
 };
 
 }  // namespace vdrive::link

@@ -69,6 +69,15 @@ void set_interface_up(const std::string& name) {
   if (::ioctl(sock.fd(), SIOCSIFFLAGS, &req) < 0) throw error_from_errno("SIOCSIFFLAGS", name, errno);
 }
 
+void set_interface_down(const std::string& name) {
+  ifreq req = request_for(name);
+  IoctlSocket sock;
+  if (::ioctl(sock.fd(), SIOCGIFFLAGS, &req) < 0) throw error_from_errno("SIOCGIFFLAGS", name, errno);
+  if ((req.ifr_flags & IFF_UP) == 0) return;
+  req.ifr_flags = static_cast<short>(req.ifr_flags & ~IFF_UP);
+  if (::ioctl(sock.fd(), SIOCSIFFLAGS, &req) < 0) throw error_from_errno("SIOCSIFFLAGS", name, errno);
+}
+
 LinkError error_from_errno(const std::string& call, const std::string& name, int err) {
   using Kind = LinkError::Kind;
   switch (err) {

@@ -19,6 +19,8 @@ int interface_index(const std::string& name);
 bool interface_is_up(const std::string& name);
 // Sets IFF_UP; throws LinkError (NotPermitted without CAP_NET_ADMIN).
 void set_interface_up(const std::string& name);
+// Clears IFF_UP (a veth's peer then loses carrier); throws LinkError like set_interface_up.
+void set_interface_down(const std::string& name);
 
 // A LinkError for a failed system call `call` on interface `name` with errno `err`.
 LinkError error_from_errno(const std::string& call, const std::string& name, int err);

@@ -4,6 +4,7 @@
 #include <linux/if_ether.h>
 #include <linux/if_packet.h>
 #include <net/if.h>
+#include <sys/ioctl.h>
 #include <sys/mman.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -211,6 +212,13 @@ bool RawSocketLink::send(std::span<const std::uint8_t> frame) {
     if (n < 0 && errno == EINTR) continue;
     return false;  // ENETDOWN, ENOBUFS, EINVAL (shorter than an Ethernet header), ...
   }
+}
+
+bool RawSocketLink::carrier() {
+  ifreq req{};
+  std::memcpy(req.ifr_name, name_.data(), std::min(name_.size(), sizeof req.ifr_name - 1));
+  if (::ioctl(fd_, SIOCGIFFLAGS, &req) < 0) return false;
+  return (req.ifr_flags & IFF_UP) != 0 && (req.ifr_flags & IFF_RUNNING) != 0;
 }
 
 }  // namespace vdrive::link

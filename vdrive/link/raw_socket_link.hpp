@@ -59,6 +59,8 @@ public:
   std::size_t receive(std::span<std::uint8_t> buf, Nanos timeout) override;
   bool send(std::span<const std::uint8_t> frame) override;
   int fd() const override { return fd_; }
+  // IFF_RUNNING: the interface is up and has carrier (for a veth, its peer is up). A system call.
+  bool carrier() override;
   // Free with the receive ring (a look at the next slot), a zero-timeout poll() without it.
   PeekCost peek_cost() const override { return ring_ != nullptr ? PeekCost::Free : PeekCost::SystemCall; }
   bool frame_waiting() override;

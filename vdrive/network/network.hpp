@@ -79,13 +79,17 @@ public:
   Network(const Network&) = delete;
   Network& operator=(const Network&) = delete;
 
-  // One Ethernet frame from the master, processed in place; `now` is its arrival time. Returns
-  // true if the frame comes back (send it to the master), false if the line destroyed it.
-  // forward_frame() passes it through the ESCs only, as the silicon does while it is on the wire;
-  // the firmware reacts afterwards in service_irqs(), so the event loop sends the frame back first
-  // and a slow firmware task (a flash write) never delays it. process_frame() does both.
+  // One Ethernet frame from the master, processed in place; `now` is its arrival time.
+  // forward_frame() passes it through the ESCs only, as the silicon does while it is on the wire,
+  // and says where it goes (back to the master, onward beyond this process, nowhere); the
+  // firmware reacts afterwards in service_irqs(), so the event loop sends the frame first and a
+  // slow firmware task (a flash write) never delays it. process_frame() does both and returns
+  // true if the frame goes out (to the master, or onward), false if the line destroyed it.
   bool process_frame(std::span<std::uint8_t> ethernet_frame, Nanos now);
-  bool forward_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) { return segment_.process(ethernet_frame, now); }
+  FrameExit forward_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) { return segment_.route(ethernet_frame, now); }
+  // A frame forward_frame() sent onward came back at `now` (Segment::returned): true if it goes
+  // on to the master.
+  bool return_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) { return segment_.returned(ethernet_frame, now); }
   // Runs the firmware of every slave whose PDI interrupt is asserted. `between` (optional) runs
   // after each slave's firmware call.
   void service_irqs(Nanos now, BetweenSlaves* between = nullptr);

@@ -2,6 +2,9 @@
 // in segment_frame_path.cpp. See segment.hpp.
 #include "vdrive/network/segment.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include "ethercat/registers.hpp"
 
 namespace vdrive::network {
@@ -47,6 +50,27 @@ void Segment::cable(const Topology& topology) {
   timings_.assign(n, esc::FrameTiming{});
   order_.assign(n, 0);
   walk_.assign(n, Walk{0, 0});
+  if (onward_slave_ >= 0) onward_slave_ = last_visited();
+  update_links();
+}
+
+std::int32_t Segment::last_visited() const {
+  return static_cast<std::int32_t>(visiting_order(Topology{uplinks_}, slaves_.size()).back());
+}
+
+void Segment::set_onward_port() {
+  if (slaves_.empty()) throw std::invalid_argument("the line has no slave to go on from");
+  const std::int32_t last = last_visited();
+  const std::uint8_t descriptor = slaves_[static_cast<std::size_t>(last)]->peek(ecat::reg::kPortDescriptor);
+  if (((descriptor >> 2) & 0x03) == 0)
+    throw std::invalid_argument("slave " + std::to_string(last + 1) +
+                                ", the last on the line, has no port 1 to go on from");
+  onward_slave_ = last;
+  update_links();
+}
+
+void Segment::set_onward_link(bool up) {
+  onward_link_ = up;
   update_links();
 }
 
@@ -89,6 +113,7 @@ void Segment::update_links() {
       const std::int32_t child = children_[i][static_cast<std::size_t>(p)];
       links.port[p] = child >= 0 && cable_ok_[static_cast<std::size_t>(child)] != 0;
     }
+    if (static_cast<std::int32_t>(i) == onward_slave_) links.port[1] = onward_link_;
     slaves_[i]->set_links(links);
   }
 }

@@ -17,6 +17,15 @@
 // still receiving it (a DL control write in this frame acts on the next one).
 // On the way back the root slave sets bit 1 of the source MAC's first byte (0x02), as ESCs do.
 //
+// The onward port (set_onward_port): the line may go on beyond this process, out of port 1 of the
+// last slave a frame visits, to slaves served elsewhere (another vdrive on a second interface, or
+// real slaves on a NIC), as one line is spread over many devices. A frame that reaches that port
+// while it forwards (link up, not closed by DL control) leaves onward (route() says so) once this
+// process's slaves have processed it; it comes back later through the same port (returned()),
+// and only then does it pass the ports on its way back to the master, which latch its DC receive
+// times then (FrameTiming::kLater). With the onward link down the last slave closes the port and
+// the frame turns there, as the silicon's loop control does.
+//
 // Ethernet: destination and source MAC, EtherType 0x88A4, optionally behind one 802.1Q tag.
 // Non-EtherCAT frames, frames an ESC destroys (malformed), and frames that meet a cut cable
 // before the root slave do not come back. Allocates nothing per frame; single-threaded.
@@ -31,6 +40,13 @@
 #include "vdrive/network/topology.hpp"
 
 namespace vdrive::network {
+
+// Where a frame goes once this process's slaves have processed it.
+enum class FrameExit : std::uint8_t {
+  Destroyed,  // malformed, not EtherCAT, or the cable into the root is cut: nothing goes out
+  ToMaster,   // back out of the root's port 0
+  Onward,     // out of the onward port, to the rest of the line (set_onward_port)
+};
 
 class Segment {
 public:
@@ -69,10 +85,30 @@ public:
   bool port_cable_connected(std::size_t slave, int port) const;
 
   // Processes one Ethernet frame in place as the cabled slaves would; `rx_time` is when the
-  // master's frame reached the root slave. Returns true if the frame comes back to the master
-  // (then send it), false if it was destroyed (malformed, or the cable into the root is cut).
-  // Non-EtherCAT frames: false. Allocates nothing.
-  bool process(std::span<std::uint8_t> ethernet_frame, Nanos rx_time);
+  // master's frame reached the root slave. Returns where it goes: back to the master, onward, or
+  // nowhere (malformed, not EtherCAT, the cable into the root cut). Allocates nothing.
+  FrameExit route(std::span<std::uint8_t> ethernet_frame, Nanos rx_time);
+  // route() for a segment without an onward port: true if the frame comes back to the master.
+  bool process(std::span<std::uint8_t> ethernet_frame, Nanos rx_time) {
+    return route(ethernet_frame, rx_time) != FrameExit::Destroyed;
+  }
+
+  // The onward port: port 1 of the last slave in visiting order (every cable connected) leads out
+  // of this process. Throws std::invalid_argument if there are no slaves or that slave's ESC has
+  // no port 1. The link starts down (set_onward_link).
+  void set_onward_port();
+  bool has_onward_port() const { return onward_slave_ >= 0; }
+  // The slave whose port 1 is the onward port (0-based), or -1.
+  int onward_slave() const { return onward_slave_; }
+  // Link on the onward port (the second interface's carrier): its ESC's DL status and loop
+  // control follow it.
+  void set_onward_link(bool up);
+  bool onward_link() const { return onward_link_; }
+  // A frame that route() sent onward came back in through the onward port at `rx_time`: it passes
+  // the ports on its way back to the master (their DC receive-time latches, if it wrote 0x0900),
+  // and the root marks its source MAC. Returns false (send nothing) for a non-EtherCAT frame or
+  // a segment without an onward port. Allocates nothing.
+  bool returned(std::span<std::uint8_t> ethernet_frame, Nanos rx_time);
 
   // A frame that left the master with a wrong FCS (corrupted on the cable into the root, see
   // fault::WireImpairment): its content does not matter, as no ESC executes it. As the silicon
@@ -107,7 +143,10 @@ private:
   void update_links();
   // The frame's path and timing before any ESC processes it: fills order_ (the ESCs in visiting
   // order) and timings_ (per slave); returns how many ESCs the frame visits.
-  std::size_t plan(Nanos rx_time);
+  // A frame that reaches the onward port while it forwards sets `onward` and ends the walk there
+  // (the onward slave is the last one visited), its way back left to returned().
+  std::size_t plan(Nanos rx_time, bool& onward);
+  std::int32_t last_visited() const;  // with every cable connected
   // The line's walk needs only where the frame turns.
   std::size_t line_turn() const;
 
@@ -119,6 +158,8 @@ private:
   std::vector<Branches> branches_;                   // the same in port order 3, 1, 2
   std::int32_t root_ = -1;                           // the slave on the master's cable
   bool line_ = true;                                 // cabled as the line: the line's own walk
+  std::int32_t onward_slave_ = -1;                   // set_onward_port()
+  bool onward_link_ = false;
   // Per-frame scratch, sized when slaves are cabled so that frames allocate nothing.
   std::vector<esc::FrameTiming> timings_;
   std::vector<std::uint32_t> order_;

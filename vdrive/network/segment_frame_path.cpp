@@ -31,7 +31,8 @@ std::size_t ethercat_payload(std::span<const std::uint8_t> frame) {
 
 }  // namespace
 
-std::size_t Segment::plan(Nanos rx_time) {
+std::size_t Segment::plan(Nanos rx_time, bool& onward) {
+  onward = false;
   std::size_t visited = 0;
   std::size_t depth = 0;
   Nanos t = rx_time;
@@ -55,6 +56,14 @@ std::size_t Segment::plan(Nanos rx_time) {
       descended = true;
     }
     if (descended) continue;
+    if (static_cast<std::int32_t>(here.slave) == onward_slave_ && slaves_[here.slave]->port_forwards(1)) {
+      // Out of this process: every port on the way back sees the frame when it returns.
+      onward = true;
+      timings_[here.slave].port1_rx = esc::FrameTiming::kLater;
+      for (std::size_t d = depth - 1; d > 0; --d)
+        timings_[walk_[d - 1].slave].rx(uplinks_[walk_[d].slave].port) = esc::FrameTiming::kLater;
+      return visited;
+    }
     // Every downstream port done: the frame leaves through port 0 into its parent's port.
     const std::uint32_t done = here.slave;
     if (--depth > 0) {
@@ -68,7 +77,8 @@ std::size_t Segment::plan(Nanos rx_time) {
 void Segment::process_corrupted(std::span<const std::uint8_t> /*ethernet_frame*/, Nanos /*rx_time*/) {
   ++dropped_;
   if (slaves_.empty() || !cable_ok_[static_cast<std::size_t>(root_)]) return;
-  const std::size_t visited = plan(0);
+  bool onward = false;  // a corrupted frame goes on too, but nobody beyond can be told from here
+  const std::size_t visited = plan(0, onward);
   for (std::size_t k = 0; k < visited; ++k) {
     const std::uint32_t s = order_[k];
     slaves_[s]->count_rx_error(0, /*forwarded=*/k > 0);
@@ -84,11 +94,11 @@ std::size_t Segment::line_turn() const {
   return turn;
 }
 
-bool Segment::process(std::span<std::uint8_t> frame, Nanos rx_time) {
+FrameExit Segment::route(std::span<std::uint8_t> frame, Nanos rx_time) {
   const std::size_t payload = ethercat_payload(frame);
   if (payload == 0 || slaves_.empty() || !cable_ok_[static_cast<std::size_t>(root_)]) {
     ++dropped_;
-    return false;
+    return FrameExit::Destroyed;
   }
   const std::span<std::uint8_t> pdu = frame.subspan(payload);
   // A well-formed DLPDU frame is checked once for all ESCs (Esc::process_checked_frame);
@@ -98,27 +108,49 @@ bool Segment::process(std::span<std::uint8_t> frame, Nanos rx_time) {
     return datagrams != 0 ? slaves_[slave]->process_checked_frame(pdu, datagrams, timing)
                           : slaves_[slave]->process_frame(pdu, timing);
   };
+  bool onward = false;
   if (line_) {
     const std::size_t turn = line_turn();
+    onward = static_cast<std::int32_t>(turn) == onward_slave_ && slaves_[turn]->port_forwards(1);
     for (std::size_t i = 0; i <= turn; ++i) {
       esc::FrameTiming timing;
       timing.port0_rx = rx_time + static_cast<Nanos>(i) * hop_delay_;
-      if (i < turn) timing.port1_rx = rx_time + static_cast<Nanos>(2 * turn - i) * hop_delay_;
+      if (onward) timing.port1_rx = esc::FrameTiming::kLater;
+      else if (i < turn) timing.port1_rx = rx_time + static_cast<Nanos>(2 * turn - i) * hop_delay_;
       if (!pass(i, timing)) {
         ++dropped_;
-        return false;
+        return FrameExit::Destroyed;
       }
     }
   } else {
-    const std::size_t visited = plan(rx_time);
+    const std::size_t visited = plan(rx_time, onward);
     for (std::size_t k = 0; k < visited; ++k) {
       if (!pass(order_[k], timings_[order_[k]])) {
         ++dropped_;
-        return false;
+        return FrameExit::Destroyed;
       }
     }
   }
+  if (onward) return FrameExit::Onward;
   frame[kMacBytes] |= kLocallyAdministered;  // source MAC, set as the frame leaves the root's port 0
+  return FrameExit::ToMaster;
+}
+
+bool Segment::returned(std::span<std::uint8_t> frame, Nanos rx_time) {
+  if (onward_slave_ < 0 || ethercat_payload(frame) == 0) return false;
+  // Back up the tree from the onward port: each ESC on the way sees the frame at the port its
+  // child hangs on, one hop later than the child.
+  Nanos t = rx_time;
+  std::int32_t child = onward_slave_;
+  slaves_[static_cast<std::size_t>(child)]->frame_returned(1, t);
+  for (;;) {
+    const Uplink& up = uplinks_[static_cast<std::size_t>(child)];
+    if (up.parent == Uplink::kMaster) break;
+    t += hop_delay_;
+    slaves_[static_cast<std::size_t>(up.parent)]->frame_returned(up.port, t);
+    child = up.parent;
+  }
+  frame[kMacBytes] |= kLocallyAdministered;
   return true;
 }
 

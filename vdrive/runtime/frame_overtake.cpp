@@ -5,12 +5,10 @@ namespace vdrive::runtime {
 void pass_frame(network::Network& network, link::Link& link, std::span<std::uint8_t> frame, Nanos now,
                 LoopCounters& counters) {
   bump(counters.frames_in);
-  if (!network.forward_frame(frame, now)) {
-    bump(counters.dropped);
-  } else if (link.send(frame)) {
-    bump(counters.frames_out);
-  } else {
-    bump(counters.send_failed);
+  switch (network.forward_frame(frame, now)) {
+    case network::FrameExit::Destroyed: bump(counters.dropped); break;
+    case network::FrameExit::ToMaster: bump(link.send(frame) ? counters.frames_out : counters.send_failed); break;
+    case network::FrameExit::Onward: bump(link.send_onward(frame) ? counters.onward : counters.send_failed); break;
   }
 }
 

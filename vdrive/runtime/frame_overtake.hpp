@@ -27,9 +27,9 @@ constexpr Nanos kSyscallPeekInterval = 20'000;
 // Frames taken in one go at most, so a flood cannot keep the firmware from running.
 constexpr int kMaxFramesInOneGo = 16;
 
-// One frame from the master through the ESCs and back to it (counted); the firmware's reaction
-// is the caller's to run (Network::service_irqs). The frame goes back before the firmware reacts
-// (architecture.md).
+// One frame from the master through the ESCs and back to it, or on through the onward port
+// (counted); the firmware's reaction is the caller's to run (Network::service_irqs). The frame
+// goes out before the firmware reacts (architecture.md).
 void pass_frame(network::Network& network, link::Link& link, std::span<std::uint8_t> frame, Nanos now,
                 LoopCounters& counters);
 
