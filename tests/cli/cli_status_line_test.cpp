@@ -168,6 +168,30 @@ TEST(StatusLineText, WireFaultLossesWhenServedBehindAWireStage) {
       << "a wire stage with nothing lost still says so";
 }
 
+TEST(StatusLineText, TheOnwardPortWhereTheLineGoesOnBeyondThisProcess) {
+  StatusSample now = sample(0, {{0x08, 0, 0}}, 90, 90);
+  now.onward = StatusSample::Onward{true, 90, 89};
+  EXPECT_EQ(format_status_line(now, nullptr),
+            "1 slave 1:Op | frames 90 in 90 out | rx errors 0 | dropped 0 | send failed 0 | onward up, 90 on, 89 back");
+  now.onward->link = false;
+  EXPECT_NE(format_status_line(now, nullptr).find("| onward down,"), std::string::npos);
+}
+
+TEST(StatusLineText, TakeSampleShowsTheOnwardPortOnlyWhereThereIsOne) {
+  runtime::LineStatus status(1);
+  runtime::LoopCounters counters;
+  EXPECT_FALSE(runtime::take_sample(status, counters, 0).onward);
+  counters.has_onward = true;
+  counters.onward_link = true;
+  counters.onward = 7;
+  counters.returned = 6;
+  const std::optional<StatusSample::Onward> o = runtime::take_sample(status, counters, 0).onward;
+  ASSERT_TRUE(o);
+  EXPECT_TRUE(o->link);
+  EXPECT_EQ(o->sent, 7u);
+  EXPECT_EQ(o->returned, 6u);
+}
+
 // The publisher reads the wire stage's losses with the ESCs, on the loop's thread, without
 // allocating; a line without a wire stage shows none.
 TEST(LineStatus, PublisherReadsTheWireStagesLosses) {

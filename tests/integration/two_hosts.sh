@@ -77,6 +77,8 @@ ip -n "$NS_B" link set "$B_IN" down
 sleep 0.1
 wait_for_line --json
 [ "$(slaves "$WORK/scan.out")" -eq 2 ] || { cat "$WORK/scan.out"; fail "with host B's link down the scan did not find 2 slaves"; }
+for _ in $(seq 1 30); do grep -q "onward link down: the line ends at the last slave here" "$WORK/vdrive.log" && break; sleep 0.1; done
+grep -q "onward link down: the line ends at the last slave here" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "host A did not log its onward link going down"; }
 ip -n "$NS_B" link set "$B_IN" up
 sleep 0.1
 wait_for_line --json

@@ -47,6 +47,9 @@ std::vector<std::string> line_changes(const runtime::StatusSample& before, const
       lines.push_back(a.error_code != 0 ? fmt::format("{}: {}", who, alarm_text(p, a.error_code, a.alarm))
                                         : fmt::format("{}: alarm cleared", who));
   }
+  if (before.onward && now.onward && before.onward->link != now.onward->link)
+    lines.push_back(now.onward->link ? "onward link up: the line goes on beyond the last slave here"
+                                     : "onward link down: the line ends at the last slave here");
   return lines;
 }
 

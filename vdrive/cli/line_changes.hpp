@@ -6,6 +6,7 @@
 //   slave 2 (ds5c1): AL error 0x001D Invalid output configuration, in Pre-Op
 //   slave 1 (a6b): alarm Err16.0 Overload (603Fh FF10h)
 //   slave 1 (a6b): alarm cleared
+//   onward link down: the line ends at the last slave here      (`run --next-iface`)
 // A change that comes and goes between two samples is not seen.
 #include <string>
 #include <vector>

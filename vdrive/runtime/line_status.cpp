@@ -69,6 +69,10 @@ StatusSample take_sample(const LineStatus& status, const LoopCounters& counters,
   s.frames_out = counters.frames_out.load(std::memory_order_relaxed);
   s.dropped = counters.dropped.load(std::memory_order_relaxed);
   s.send_failed = counters.send_failed.load(std::memory_order_relaxed);
+  if (counters.has_onward.load(std::memory_order_relaxed))
+    s.onward = StatusSample::Onward{counters.onward_link.load(std::memory_order_relaxed),
+                                    counters.onward.load(std::memory_order_relaxed),
+                                    counters.returned.load(std::memory_order_relaxed)};
   s.wire = status.wire();
   return s;
 }
@@ -113,6 +117,8 @@ std::string format_status_line(const StatusSample& now, const StatusSample* befo
   }
   line += fmt::format(" | rx errors {} | dropped {} | send failed {}", rx_errors, now.dropped, now.send_failed);
   if (now.wire) line += fmt::format(" | wire fault dropped {} corrupted {}", now.wire->dropped, now.wire->corrupted);
+  if (now.onward)
+    line += fmt::format(" | onward {}, {} on, {} back", now.onward->link ? "up" : "down", now.onward->sent, now.onward->returned);
   return line;
 }
 

@@ -108,11 +108,17 @@ struct StatusSample {
   std::vector<SlaveStatus> slaves;
   std::uint64_t frames_in = 0, frames_out = 0, dropped = 0, send_failed = 0;
   std::optional<WireLosses> wire;  // none: no wire fault stage
+  struct Onward {
+    bool link = false;
+    std::uint64_t sent = 0, returned = 0;
+  };
+  std::optional<Onward> onward;  // none: the line ends in this process
 };
 StatusSample take_sample(const LineStatus& status, const LoopCounters& counters, Nanos now);
 
 // "3 slaves 1:Op 2:Op 3:SafeOp+E(001B) | frames 5210 in 5210 out, 1000/s | rx errors 0 | dropped 0 | send failed 0
-// | wire fault dropped 0 corrupted 0" (the last part only with a wire fault stage);
+// | wire fault dropped 0 corrupted 0 | onward up, 5210 on, 5210 back" (the wire part only with a
+// wire fault stage, the onward part only where the line goes on beyond this process);
 // the rate is frames in per second since `before` (none when there is no earlier sample). With
 // more than 8 slaves the states are counted instead ("40 slaves Op 39, SafeOp+E 1 (first: 7 001B)").
 std::string format_status_line(const StatusSample& now, const StatusSample* before);

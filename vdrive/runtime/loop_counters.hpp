@@ -8,14 +8,15 @@ namespace vdrive::runtime {
 
 struct LoopCounters {
   std::atomic<std::uint64_t> frames_in{0};    // EtherCAT frames received from the link
-  std::atomic<std::uint64_t> frames_out{0};   // frames sent back to the master
+  std::atomic<std::uint64_t> frames_out{0};   // frames sent back to the master (returned ones too)
   std::atomic<std::uint64_t> dropped{0};      // frames the line destroyed (malformed, cable cut)
   std::atomic<std::uint64_t> send_failed{0};  // replies the link refused (link down, full)
   // With an onward port (OnwardLink): frames sent on beyond this process, frames that came back
-  // (and went on to the master), and the onward link's carrier.
+  // (and went on to the master: frames_out counts them too), and the onward link's carrier.
   std::atomic<std::uint64_t> onward{0};
   std::atomic<std::uint64_t> returned{0};
   std::atomic<bool> onward_link{false};
+  std::atomic<bool> has_onward{false};  // set once by OnwardLink
 };
 
 // Only the loop thread writes, so a relaxed load+store suffices (and avoids a locked RMW).

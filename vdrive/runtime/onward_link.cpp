@@ -21,6 +21,7 @@ OnwardLink::OnwardLink(link::Link& master, link::Link& onward, network::Network&
                        LoopCounters& counters)
     : master_(master), onward_(onward), network_(network), clock_(clock), counters_(counters) {
   if (master.fd() < 0 || onward.fd() < 0) throw std::invalid_argument("an onward port needs links with file descriptors");
+  counters.has_onward.store(true, std::memory_order_relaxed);
   check_carrier(clock.now());
 }
 
@@ -40,7 +41,7 @@ void OnwardLink::take_returns() {
     const std::span<std::uint8_t> frame = std::span(returning_).first(n);
     if (!network_.return_frame(frame, clock_.now())) continue;
     bump(counters_.returned);
-    if (!master_.send(frame)) bump(counters_.send_failed);
+    bump(master_.send(frame) ? counters_.frames_out : counters_.send_failed);
   }
 }
 
