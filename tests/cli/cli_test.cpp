@@ -74,6 +74,18 @@ TEST(Cli, UnknownOptionIsNamed) {
   expect_one_error_line(r, "--bogus");
 }
 
+TEST(Cli, AnUnknownNetworkNamespaceIsNamed) {
+  const auto r = vdrive({"run", "--netns", "vdrive-no-such-ns", "--iface", "x", "--drive", "a6b"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--netns: no network namespace 'vdrive-no-such-ns' (ip netns add vdrive-no-such-ns makes one)");
+}
+
+TEST(Cli, ATelemetrySubscriberThatHearsNothingSaysSoAndFails) {
+  const auto r = vdrive({"telemetry", "--domain", "229", "--duration", "0.5", "--quiet"});
+  EXPECT_EQ(r.exit_code, 1);
+  expect_one_error_line(r, "no telemetry heard in domain 229");
+}
+
 TEST(Cli, MissingDriveIsNamed) {
   const auto r = vdrive({"run", "--iface", "lo"});
   EXPECT_EQ(r.exit_code, 2);

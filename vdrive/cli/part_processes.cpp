@@ -17,6 +17,7 @@
 #include "vdrive/cli/exit_codes.hpp"
 #include "vdrive/link/link_error.hpp"
 #include "vdrive/link/net_interface.hpp"
+#include "vdrive/link/net_namespace.hpp"
 
 namespace vdrive::cli {
 namespace {
@@ -36,8 +37,25 @@ std::string how_it_ended(int status) {
 
 }  // namespace
 
-PartProcesses::PartProcesses(const std::vector<network::LinePart>& parts, const std::string& veth_prefix, const ArgsOf& child_args)
-    : parts_(parts), children_(std::make_unique<Child[]>(parts.size())) {
+namespace {
+
+// Inside `netns` for as long as it lives; nothing without one.
+std::unique_ptr<link::NetnsScope> inside(const std::string& netns) {
+  if (netns.empty()) return nullptr;
+  try {
+    return std::make_unique<link::NetnsScope>(netns);
+  } catch (const link::LinkError& e) {
+    throw CliError(e.kind() == link::LinkError::Kind::NotPermitted ? kExitNotPermitted : kExitBadArguments,
+                   fmt::format("--netns: {}", e.what()));
+  }
+}
+
+}  // namespace
+
+PartProcesses::PartProcesses(const std::vector<network::LinePart>& parts, const std::string& veth_prefix,
+                             const std::string& netns, const ArgsOf& child_args)
+    : parts_(parts), netns_(netns), children_(std::make_unique<Child[]>(parts.size())) {
+  const std::unique_ptr<link::NetnsScope> here = inside(netns_);
   try {
     for (std::size_t k = 0; k + 1 < parts.size(); ++k)
       veths_.push_back(std::make_unique<VethPair>(veth_prefix + std::to_string(k + 1) + "o", veth_prefix + std::to_string(k + 1) + "i"));
@@ -48,6 +66,7 @@ PartProcesses::PartProcesses(const std::vector<network::LinePart>& parts, const 
     }
   } catch (...) {
     stop_children();
+    veths_.clear();  // inside the namespace still
     throw;
   }
   watcher_ = std::thread([this] { watch(); });
@@ -57,6 +76,12 @@ PartProcesses::~PartProcesses() {
   stopping_.store(true);
   stop_children();
   if (watcher_.joinable()) watcher_.join();
+  try {
+    const std::unique_ptr<link::NetnsScope> here = inside(netns_);
+    veths_.clear();
+  } catch (const CliError& e) {
+    spdlog::warn("{}: the veth pairs of --processes stay", e.what());
+  }
 }
 
 std::string PartProcesses::name(std::size_t part) const {
@@ -118,6 +143,12 @@ void PartProcesses::start(std::size_t part, const std::vector<std::string>& args
 }
 
 void PartProcesses::watch() {
+  std::unique_ptr<link::NetnsScope> here;  // to take a veth end down where it is
+  try {
+    here = inside(netns_);
+  } catch (const CliError& e) {
+    spdlog::warn("{}", e.what());
+  }
   for (;;) {
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, 0);

@@ -2,7 +2,7 @@
 // The processes of a line spread over cores (`vdrive run --processes N`, docs/scale-out.md): the
 // veth pairs that chain part k's onward port (--next-iface) to part k+1's master side (--iface),
 // and parts 2..N as child processes running `vdrive run` on them, each pinned to its core. Part 1
-// is the calling process's own to serve.
+// is the calling process's own to serve. With a namespace (`run --netns`) all of that lives inside it.
 //
 // A child is started with its parent's death signal set (it ends when the parent dies) and tells
 // it over a pipe when it serves, so the parent starts serving only when the whole line answers; a
@@ -37,7 +37,9 @@ public:
   // Throws CliError: the veth pairs cannot be made (not root), a child fails to start or to
   // serve within kStartTimeout.
   using ArgsOf = std::function<std::vector<std::string>(std::size_t part, const std::string& in, const std::string& next)>;
-  PartProcesses(const std::vector<network::LinePart>& parts, const std::string& veth_prefix, const ArgsOf& child_args);
+  // `netns` (may be empty): the veth pairs and the children are made inside that namespace.
+  PartProcesses(const std::vector<network::LinePart>& parts, const std::string& veth_prefix, const std::string& netns,
+                const ArgsOf& child_args);
   ~PartProcesses();
   PartProcesses(const PartProcesses&) = delete;
   PartProcesses& operator=(const PartProcesses&) = delete;
@@ -60,6 +62,7 @@ private:
   std::string name(std::size_t part) const;
 
   std::vector<network::LinePart> parts_;
+  std::string netns_;
   std::vector<std::unique_ptr<VethPair>> veths_;
   std::unique_ptr<Child[]> children_;  // by part; part 0 is the caller's own
   std::atomic<bool> stopping_{false};

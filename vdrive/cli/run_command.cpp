@@ -27,6 +27,7 @@
 #include "vdrive/drive/product_plant.hpp"
 #include "vdrive/fault/impaired_link.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
+#include "vdrive/link/net_namespace.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 #include "vdrive/link/tap_link.hpp"
 #include "plant/plant.hpp"
@@ -53,6 +54,7 @@ struct RunOptions {
   std::string iface;
   std::string tap;
   std::string next_iface;           // --next-iface: the line goes on out of the last slave's port 1 there
+  std::string netns;                // --netns: the interfaces are in this network namespace
   long processes = 1;               // --processes: the line cut into N parts, one process and core each
   int ready_fd = -1;                // a part of --processes tells its parent here that it serves
   std::vector<std::string> drives;
@@ -199,6 +201,16 @@ std::unique_ptr<link::Link> open_link(const RunOptions& o) {
   }
 }
 
+// --netns: the calling thread inside the namespace while it opens the interfaces; none without.
+std::unique_ptr<link::NetnsScope> enter_netns(const RunOptions& o) {
+  if (o.netns.empty()) return nullptr;
+  try {
+    return std::make_unique<link::NetnsScope>(o.netns);
+  } catch (const link::LinkError& e) {
+    throw CliError(exit_code_for(e.kind()), fmt::format("--netns: {}", e.what()));
+  }
+}
+
 // --next-iface: the onward port's interface, and the last slave's port 1 made the onward port.
 std::unique_ptr<link::Link> open_onward(const RunOptions& o, network::Network& network) {
   if (o.next_iface.empty()) return nullptr;
@@ -289,7 +301,7 @@ void run_in_parts(RunOptions o) {
     if (o.no_qdisc_bypass) a.push_back("--no-qdisc-bypass");
     return a;
   };
-  PartProcesses others(parts, fmt::format("vd{}p", ::getpid() % 100000), child_args);
+  PartProcesses others(parts, fmt::format("vd{}p", ::getpid() % 100000), o.netns, child_args);
   RunOptions first = o;
   first.processes = 1;
   first.drives.assign(o.drives.begin(), o.drives.begin() + static_cast<long>(parts[0].count));
@@ -339,8 +351,12 @@ void run(RunOptions o) {
     throw CliError(kExitBadArguments, fmt::format("--cpu {}: no such CPU, or not one this process may use", o.cpu));
   // Logs go to stderr at --log-level (set up by main for every command, log_level.hpp).
 
-  std::unique_ptr<link::Link> link = open_link(o);
-  const std::string where = o.tap.empty() ? o.iface : "TAP " + o.tap;
+  std::unique_ptr<link::Link> link;
+  {
+    const std::unique_ptr<link::NetnsScope> inside = enter_netns(o);
+    link = open_link(o);
+  }
+  const std::string where = (o.tap.empty() ? o.iface : "TAP " + o.tap) + (o.netns.empty() ? "" : " in namespace " + o.netns);
 
   MonotonicClock clock;
   std::unique_ptr<network::Network> network;
@@ -357,7 +373,11 @@ void run(RunOptions o) {
     throw CliError(o.profile_dir.empty() ? kExitFailure : kExitBadArguments, e.what());
   }
 
-  const std::unique_ptr<link::Link> onward_link = open_onward(o, *network);
+  std::unique_ptr<link::Link> onward_link;
+  {
+    const std::unique_ptr<link::NetnsScope> inside = enter_netns(o);
+    onward_link = open_onward(o, *network);
+  }
 
   if (o.rt_priority != 0) {
     const runtime::RealtimeResult rt = runtime::enter_realtime(o.rt_priority);
@@ -446,6 +466,9 @@ void add_run_command(CLI::App& app) {
       cmd->add_option("--iface,-i", o->iface, "Interface the master is cabled to (raw socket)");
   CLI::Option* tap = cmd->add_option("--tap", o->tap, "Create/attach TAP device NAME and serve on it");
   iface->excludes(tap);
+  cmd->add_option("--netns", o->netns,
+                  "Open the interfaces (--iface, --tap, --next-iface) inside network namespace NAME (ip netns); the "
+                  "control socket, telemetry and web page stay in this one (docs/cli.md)");
   cmd->add_option("--processes", o->processes,
                   "Cut the line into N consecutive parts, each served by its own process pinned to its own core, "
                   "chained over veth pairs made for the run (docs/scale-out.md); default 1")

@@ -85,6 +85,13 @@ struct WatchOptions {
   bool quiet = false;
 };
 
+// A subscriber that hears nothing says so after this long, and fails at the end.
+constexpr auto kNoPublisherHint = std::chrono::seconds(5);
+constexpr const char* kNoPublisherWhy =
+    "no `vdrive run --telemetry` (or `scenario run --telemetry`) publishes there. Check --domain; a run "
+    "started with `ip netns exec` publishes inside that namespace, out of reach: serve with "
+    "`vdrive run --netns NAME --iface IF --telemetry` instead (docs/telemetry.md)";
+
 void watch(const WatchOptions& o) {
   const int domain = telemetry_domain(o.domain);
   std::ofstream csv, events;
@@ -113,7 +120,9 @@ void watch(const WatchOptions& o) {
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
 
   telemetry::TelemetryHandlers h;
+  bool heard = false;  // anything from any publisher, whatever the filters keep
   h.axis = [&](const telemetry::AxisSample& a) {
+    heard = true;
     if (o.slave != 0 && a.slave != o.slave) return;
     if (o.count != 0 && rows >= o.count) return;
     ++rows;
@@ -133,19 +142,27 @@ void watch(const WatchOptions& o) {
     }
   };
   h.bus = [&](const telemetry::BusSample& b) {
+    heard = true;
     if (o.slave == 0 || b.slave == o.slave) last_bus[b.slave] = b;
   };
   h.event = [&](const telemetry::Event& e) {
+    heard = true;
     if (o.slave != 0 && e.slave != 0 && e.slave != o.slave) return;
     if (events.is_open()) events << e.time << ',' << e.slave << ',' << e.kind << ',' << e.value << ',' << e.previous << ',' << csv_text(e.text) << '\n';
     if (!o.quiet && !tty) fmt::print("event t={:.3f}s slave {} {}: {}\n", static_cast<double>(e.time) * 1e-9, e.slave, e.kind, e.text);
     if (!o.quiet && tty) fmt::print(stderr, "\nevent t={:.3f}s slave {} {}: {}\n", static_cast<double>(e.time) * 1e-9, e.slave, e.kind, e.text), drawn = 0;
   };
 
+  bool hinted = false;
   for (;;) {
     if (stop.load()) break;
     if (o.count != 0 && rows >= o.count) break;
     const auto now = std::chrono::steady_clock::now();
+    if (!heard && !hinted && now - started >= kNoPublisherHint) {
+      hinted = true;
+      fmt::print(stderr, "vdrive telemetry: nothing heard in domain {} after {} s: {}\n", domain,
+                 std::chrono::duration_cast<std::chrono::seconds>(kNoPublisherHint).count(), kNoPublisherWhy);
+    }
     if (o.duration_s > 0 && now - started >= std::chrono::duration<double>(o.duration_s)) break;
     client->poll(50'000'000, h);
     if (view && tty && std::chrono::steady_clock::now() >= next_draw) {
@@ -162,6 +179,10 @@ void watch(const WatchOptions& o) {
     }
   }
   if (!o.quiet) fmt::print(stderr, "vdrive telemetry: {} axis sample(s)\n", rows);
+  if (!heard)
+    throw CliError(kExitFailure, fmt::format("no telemetry heard in domain {} in {:.1f} s: {}", domain,
+                                             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+                                             kNoPublisherWhy));
 }
 
 // The control side: one request, its reply, the exit code a refusal maps to.
