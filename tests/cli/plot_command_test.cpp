@@ -160,6 +160,66 @@ void expect_error(const ProcessResult& r, int code, const std::string& must_cont
   EXPECT_NE(r.err.find(must_contain), std::string::npos) << r.err;
 }
 
+TEST_F(PlotCommand, AnExistingOutputIsReplacedOnlyWithForce) {
+  ASSERT_EQ(vdrive({"plot", path("csp.csv"), "-o", path("twice.png")}).exit_code, 0);
+  const auto written = fs::last_write_time(path("twice.png"));
+  expect_error(vdrive({"plot", path("csp.csv"), "-o", path("twice.png")}), 2, "twice.png' exists; --force replaces it");
+  EXPECT_EQ(fs::last_write_time(path("twice.png")), written);
+  const ProcessResult r = vdrive({"plot", path("csp.csv"), "-o", path("twice.png"), "--force"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST_F(PlotCommand, AxesNameTheirUnitsAndRevolutionsUseEachProductsResolution) {
+  // The scenario's drives in cable order; the units come from each product's factor group.
+  ProcessResult r = vdrive({"plot", path("csp.csv"), "-o", path("rev.png"), "--drive", "a6b", "ds5c1", "ds1000a", "--revolutions"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("a6b: 8.38861e+06 position units per motor revolution"), std::string::npos) << r.out;  // 23-bit encoder
+  EXPECT_NE(r.out.find("ds5c1: 131072 position units per motor revolution"), std::string::npos) << r.out;   // 17-bit
+  const test::PngImage img = test::read_png(path("rev.png"));
+  ASSERT_TRUE(img.error.empty()) << img.error;
+  ASSERT_EQ(test::find_frames(img).size(), 4u);
+
+  r = vdrive({"plot", path("csp.csv"), "-o", path("norev.png"), "--revolutions"});
+  expect_error(r, 2, "--revolutions: give each slave's product in cable order with --drive");
+  r = vdrive({"plot", path("csp.csv"), "-o", path("norev.png"), "--drive", "a6b"});
+  expect_error(r, 2, "--drive: 1 given, the trace has slave 2");
+  r = vdrive({"plot", path("csp.csv"), "-o", path("norev.png"), "--normalise", "--revolutions", "--drive", "a6b", "ds5c1", "ds1000a"});
+  EXPECT_EQ(r.exit_code, 2) << "--normalise and --revolutions exclude each other";
+}
+
+TEST_F(PlotCommand, AlChangesAlarmsAndLoggedEventsAreMarked) {
+  // The trace's own AL changes (every slave to Op) are markers; an event log adds its events.
+  ProcessResult r = vdrive({"plot", path("csp.csv"), "-o", path("marks.png")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto count = [](const std::string& out) {
+    const std::size_t at = out.find(" marker(s)");
+    const std::size_t from = out.rfind(' ', at - 1) + 1;
+    return at == std::string::npos ? -1 : std::stoi(out.substr(from, at - from));
+  };
+  const int own = count(r.out);
+  EXPECT_GT(own, 0) << r.out;
+  const test::PngImage img = test::read_png(path("marks.png"));
+  ASSERT_TRUE(img.error.empty()) << img.error;
+  const std::vector<test::Frame> frames = test::find_frames(img);
+  ASSERT_EQ(frames.size(), 4u);
+  EXPECT_GT(test::count_inside(img, frames[3], test::parse_colour("#888888"), 12), 20) << "an AL marker crosses every panel";
+
+  std::ofstream(path("events.csv")) << "time_ns,slave,kind,value,previous,text\n"
+                                    << "500000000,2,fault_injected,0,0,\"overload, until cleared\"\n"
+                                    << "900000000,2,alarm,65296,0,E-161 overload\n";
+  r = vdrive({"plot", path("csp.csv"), "-o", path("marks2.png"), "--events", path("events.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count(r.out), own + 2) << r.out;
+  const test::PngImage with_events = test::read_png(path("marks2.png"));
+  ASSERT_TRUE(with_events.error.empty());
+  EXPECT_GT(test::count_inside(with_events, test::find_frames(with_events)[2], test::parse_colour("#C00000"), 12), 20)
+      << "the logged alarm's marker";
+
+  std::ofstream(path("bad_events.csv")) << "time_ns,slave,text\n1,1,x\n";
+  expect_error(vdrive({"plot", path("csp.csv"), "-o", path("marks3.png"), "--events", path("bad_events.csv")}), 2,
+               "--events: " + path("bad_events.csv") + ":1: an event log needs the columns time_ns, slave, kind and text");
+}
+
 TEST_F(PlotCommand, BadInputIsABadArgumentNamingTheFile) {
   expect_error(vdrive({"plot", path("nosuch.csv")}), 2, "nosuch.csv: cannot open");
 

@@ -10,6 +10,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -22,7 +24,10 @@
 #include <vector>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/exit_codes.hpp"
 #include "vdrive/cli/gnuplot_script.hpp"
+#include "vdrive/cli/plot_markers.hpp"
+#include "vdrive/cli/plot_units.hpp"
 #include "vdrive/cli/trace_csv.hpp"
 
 extern char** environ;
@@ -37,7 +42,23 @@ struct PlotOptions {
   std::string title;
   std::string size = "1200x900";
   bool from_zero = false;  // time axis from the first row, for traces stamped with a monotonic clock
+  std::vector<std::string> drives;  // --drive: each slave's product, in cable order (legend, --revolutions)
+  std::string profile_dir;
+  bool revolutions = false;
+  bool normalise = false;
+  std::string events;      // --events: an event log whose events are marked
+  bool force = false;      // replace an existing output
 };
+
+// Each plotted slave's largest |value| per panel, as the factor that makes it 1.
+PanelScale normalising_scale(const SlaveSeries& s) {
+  const auto factor = [](const std::vector<double>& v) {
+    double most = 0.0;
+    for (const double x : v) most = std::max(most, std::abs(x));
+    return most > 0.0 ? 1.0 / most : 1.0;
+  };
+  return PanelScale{factor(s.position), factor(s.velocity), factor(s.torque), factor(s.following_error)};
+}
 
 constexpr int kMinSide = 200, kMaxSide = 10000;
 
@@ -123,11 +144,13 @@ void run(const PlotOptions& o) {
   } catch (const TraceCsvError& e) {
     throw CliError(kExitBadArguments, e.what());
   }
+  double time_shift = 0.0;
   if (o.from_zero) {
     double first = trace.slaves.front().time_s.front();
     for (const SlaveSeries& s : trace.slaves) first = std::min(first, s.time_s.front());
     for (SlaveSeries& s : trace.slaves)
       for (double& t : s.time_s) t -= first;
+    time_shift = first;
   }
   std::vector<const SlaveSeries*> series;
   std::vector<int> numbers;
@@ -142,7 +165,48 @@ void run(const PlotOptions& o) {
     throw CliError(kExitBadArguments, fmt::format("--slave {}: {} has slave(s) {}", *o.slave, o.trace, fmt::join(present, ", ")));
   }
 
+  // Products by cable order; the plotted slaves' own.
+  std::vector<std::string> products;
+  if (!o.drives.empty()) {
+    for (const int slave : numbers) {
+      if (slave < 1 || static_cast<std::size_t>(slave) > o.drives.size())
+        throw CliError(kExitBadArguments, fmt::format("--drive: {} given, the trace has slave {}", o.drives.size(), slave));
+      products.push_back(o.drives[static_cast<std::size_t>(slave) - 1]);
+    }
+  }
+  if (o.revolutions && products.empty())
+    throw CliError(kExitBadArguments, "--revolutions: give each slave's product in cable order with --drive (as to vdrive run)");
+  PlotUnits units = o.revolutions ? revolution_units(products, o.profile_dir) : drive_units(series.size());
+  std::array<std::string, 4> ylabels;
+  for (std::size_t p = 0; p < 4; ++p) {
+    const std::string& unit = p == 1 ? units.velocity : p == 2 ? units.torque : units.position;
+    ylabels[p] = o.normalise ? fmt::format("{} (/ each slave's max)", kPanelNames[p]) : fmt::format("{} ({})", kPanelNames[p], unit);
+  }
+  if (o.normalise)
+    for (std::size_t k = 0; k < series.size(); ++k) units.per_slave[k] = normalising_scale(*series[k]);
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < series.size(); ++k)
+    names.push_back(products.empty() ? fmt::format("slave {}", numbers[k]) : fmt::format("slave {} {}", numbers[k], products[k]));
+
+  std::vector<PlotMarker> markers = trace_markers(series);
+  if (!o.events.empty()) {
+    try {
+      std::vector<PlotMarker> more = read_event_markers(o.events);
+      const double shift = o.from_zero ? time_shift : 0.0;
+      for (PlotMarker& m : more) {
+        m.time_s -= shift;
+        if (o.slave && m.slave != 0 && m.slave != *o.slave) continue;
+        markers.push_back(std::move(m));
+      }
+    } catch (const TraceCsvError& e) {
+      throw CliError(kExitBadArguments, fmt::format("--events: {}", e.what()));
+    }
+  }
+  markers = merge_simultaneous(std::move(markers));
+
   const std::string output = o.output.empty() ? std::filesystem::path(o.trace).replace_extension(".png").string() : o.output;
+  if (!o.force && std::filesystem::exists(output))
+    throw CliError(kExitBadArguments, fmt::format("'{}' exists; --force replaces it", output));
   {  // gnuplot only warns about an output it cannot open; find out first and say so.
     std::ofstream probe(output, std::ios::binary | std::ios::app);
     if (!probe) throw CliError(kExitFailure, fmt::format("-o: cannot write '{}': {}", output, std::strerror(errno)));
@@ -154,18 +218,22 @@ void run(const PlotOptions& o) {
   spec.width = width;
   spec.height = height;
   spec.title = o.title;
+  spec.ylabels = ylabels;
+  spec.series_names = names;
+  spec.markers = markers;
   {
     std::ofstream data(spec.data_file);
-    write_gnuplot_data(data, series);
+    write_gnuplot_data(data, series, units.per_slave);
     if (!data.flush()) throw CliError(kExitFailure, fmt::format("cannot write '{}'", spec.data_file));
   }
-  write_text(dir.file("plot.gp"), gnuplot_script(spec, numbers));
+  write_text(dir.file("plot.gp"), gnuplot_script(spec));
   run_gnuplot(dir.file("plot.gp"), dir.file("gnuplot.log"));
   std::error_code ec;
   if (std::filesystem::file_size(output, ec) == 0 || ec)
     throw CliError(kExitFailure, fmt::format("gnuplot wrote nothing to '{}': {}", output, first_line_of(dir.file("gnuplot.log"))));
   const double t0 = series.front()->time_s.front(), t1 = series.front()->time_s.back();
-  fmt::print("{}: slave(s) {}, {:.3f} to {:.3f} s\n", output, fmt::join(numbers, ", "), t0, t1);
+  fmt::print("{}: slave(s) {}, {:.3f} to {:.3f} s, {} marker(s)\n", output, fmt::join(numbers, ", "), t0, t1, markers.size());
+  for (const std::string& note : units.notes) fmt::print("  {}\n", note);
 }
 
 }  // namespace
@@ -185,6 +253,18 @@ void add_plot_command(CLI::App& app) {
   cmd->add_flag("--from-zero", o->from_zero,
                 "Time axis from the first row (0 s) instead of the file's times, e.g. for a telemetry CSV stamped with "
                 "the host's monotonic clock");
+  cmd->add_option("--drive,-d", o->drives, "Each slave's product in cable order, as to vdrive run (legend, --revolutions)")
+      ->take_all()
+      ->type_name("ID");
+  cmd->add_option("--profile-dir", o->profile_dir, "With --drive: profiles from DIR instead of the built-in ones");
+  CLI::Option* rev = cmd->add_flag("--revolutions", o->revolutions,
+                "Motor revolutions, rev/s and % rated torque instead of the drive's units (needs --drive; uses each "
+                "product's factor group at power-on)");
+  cmd->add_flag("--normalise", o->normalise, "Each slave's curve divided by its own largest |value| per panel")->excludes(rev);
+  cmd->add_option("--events", o->events,
+                  "Mark the events of an event log (vdrive telemetry --events-csv, the web page's events.csv)")
+      ->type_name("EVENTS.csv");
+  cmd->add_flag("--force,-f", o->force, "Replace an existing output file");
   cmd->add_option("--size", o->size, "Image size in pixels, WIDTHxHEIGHT (200..10000 each)")
       ->type_name("WxH")
       ->capture_default_str();
@@ -193,6 +273,7 @@ void add_plot_command(CLI::App& app) {
       "  vdrive scenario run scenarios/modes_csp.yaml --trace csp.csv\n"
       "  vdrive plot csp.csv -o csp.png --title 'csp, 3 drives'\n"
       "  vdrive plot csp.csv --slave 2 --size 1600x1000\n"
+      "  vdrive plot axes.csv --from-zero --events events.csv --drive a6b ds5c1 ds1000a --revolutions -o axes.png\n"
       "Needs gnuplot (Debian gnuplot-nox); $VDRIVE_GNUPLOT names another gnuplot program.");
   cmd->callback([o] { run(*o); });
 }

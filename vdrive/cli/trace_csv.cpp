@@ -65,6 +65,7 @@ TraceCsv read_trace_csv(const std::string& path) {
     throw TraceCsvError(fmt::format("{}:1: header lacks column(s) {} (it has: {})", path, fmt::join(missing, ", "),
                                     header_line.substr(0, 200)));
 
+  const std::optional<std::size_t> al_state = column(header, "al_state"), error_code = column(header, "error_code");
   std::map<int, SlaveSeries> by_slave;
   int line_no = 1;
   while (std::getline(in, line)) {
@@ -92,6 +93,8 @@ TraceCsv read_trace_csv(const std::string& path) {
     s.velocity.push_back(number(cols[2]));
     s.torque.push_back(number(cols[3]));
     s.following_error.push_back(number(cols[4]));
+    if (al_state) s.al_state.push_back(number(*al_state));
+    if (error_code) s.error_code.push_back(number(*error_code));
   }
   if (by_slave.empty()) throw TraceCsvError(fmt::format("{}: no rows after the header", path));
   TraceCsv trace;

@@ -2,7 +2,8 @@
 // A trace CSV as `vdrive plot` reads it: the scenario trace (vdrive/scenario/trace_writer.hpp) or
 // the telemetry CSV. Columns are found by their header name, not their position, so both read
 // alike: time (`time_ns`, or `time_s`), `slave`, `position`, `velocity`, `torque`,
-// `following_error`; other columns are ignored. Rows come back grouped per slave, in file order.
+// `following_error`, and where present `al_state` and `error_code` (603Fh), which mark AL changes
+// and alarms on the plot; other columns are ignored. Rows come back grouped per slave, in file order.
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@ namespace vdrive::cli {
 struct SlaveSeries {
   int slave = 0;
   std::vector<double> time_s, position, velocity, torque, following_error;
+  std::vector<double> al_state, error_code;  // empty when the trace has no such column
 };
 
 struct TraceCsv {
