@@ -58,7 +58,7 @@ std::string gnuplot_script(const PlotSpec& spec) {
   s += fmt::format("set output {}\n", quoted(spec.output));
   s += spec.title.empty() ? "set multiplot layout 4,1\n" : fmt::format("set multiplot layout 4,1 title {}\n", quoted(spec.title));
   // Fixed margins (character cells) so the four panels line up whatever their tic labels.
-  s += "set lmargin 14\nset rmargin 22\nset grid lc rgb '#dddddd'\nset key outside right top\n";
+  s += "set lmargin 14\nset rmargin 26\nset grid lc rgb '#dddddd'\nset key outside right top\n";
   s += "set format y '%g'\nset ytics nomirror\n";
   const std::size_t markers = std::min(spec.markers.size(), kMaxMarkers);
   for (std::size_t m = 0; m < markers; ++m) {
