@@ -79,6 +79,20 @@ TEST(OdCommandText, IndexSelectsOneObjectWithItsColumns) {
   EXPECT_NE(out[2].find("5632..5635"), std::string::npos) << out[2];
 }
 
+TEST(OdCommandText, UnitsAreInEnglishWithTheManualsBeside) {
+  auto r = vdrive({"od", "--drive", "ds5c1", "--index", "0x6064"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> out = lines(r.out);
+  ASSERT_EQ(out.size(), 2u) << r.out;
+  EXPECT_NE(out[0].find("UNITS (MANUAL)"), std::string::npos) << out[0];
+  EXPECT_TRUE(std::regex_search(out[1], std::regex(R"( command unit +指令单位$)"))) << out[1];
+  r = vdrive({"od", "--drive", "ds5c1", "--index", "0x6064", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["entries"][0]["units"], "command unit");
+  EXPECT_EQ(j["entries"][0]["units_manual"], "指令单位");
+}
+
 TEST(OdCommandJson, MatchesTheDictionaryAndTheProfile) {
   const profile::ProductProfile p = profile::load_profile("ds1000a");
   const Dictionary d = Dictionary::load(p);

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/od/unit_text.hpp"
 #include "vdrive/od/access_text.hpp"
 #include "vdrive/od/entry_value.hpp"
 #include "vdrive/cli/product_source.hpp"
@@ -71,12 +72,16 @@ std::string range_text(const od::EntryDesc& e) {
 }
 
 void print_text(const std::vector<const od::EntryDesc*>& entries) {
-  fmt::print("{:<6} {:<3} {:<40} {:<4} {:<16} {:<3} {:<22} {:<24} {}\n", "INDEX", "SUB", "NAME", "TYPE",
-             "ACCESS", "PDO", "DEFAULT", "RANGE", "UNITS");
+  fmt::print("{:<6} {:<3} {:<40} {:<4} {:<16} {:<3} {:<22} {:<24} {:<28} {}\n", "INDEX", "SUB", "NAME", "TYPE",
+             "ACCESS", "PDO", "DEFAULT", "RANGE", "UNITS", "UNITS (MANUAL)");
   for (const od::EntryDesc* e : entries) {
-    fmt::print("{:04X}h  {:02X}h {:<40} {:<4} {:<16} {:<3} {:<22} {:<24} {}\n", e->index, e->subindex, e->name,
-               od::short_name(e->type), od::access_text(e->access), od::pdo_text(e->access), default_text(*e),
-               range_text(*e), e->units.empty() ? "-" : e->units);
+    const std::string english = e->units.empty() ? "-" : od::english_units(e->units);
+    std::string line = fmt::format("{:04X}h  {:02X}h {:<40} {:<4} {:<16} {:<3} {:<22} {:<24} {:<28} {}", e->index, e->subindex,
+                                   e->name, od::short_name(e->type), od::access_text(e->access), od::pdo_text(e->access),
+                                   default_text(*e), range_text(*e), english,
+                                   english == e->units || e->units.empty() ? "" : e->units);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    fmt::print("{}\n", line);
   }
 }
 
@@ -97,7 +102,8 @@ void print_json(const std::string& product, const std::vector<const od::EntryDes
     else j["default"] = integer_value(*e);
     j["min"] = e->min ? nlohmann::ordered_json(*e->min) : nlohmann::ordered_json(nullptr);
     j["max"] = e->max ? nlohmann::ordered_json(*e->max) : nlohmann::ordered_json(nullptr);
-    j["units"] = e->units.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e->units);
+    j["units"] = e->units.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(od::english_units(e->units));
+    j["units_manual"] = e->units.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e->units);
     j["synthesized"] = e->synthesized;
     j["manual_line"] = e->manual_line;
     list.push_back(std::move(j));
