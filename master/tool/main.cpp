@@ -1,6 +1,6 @@
 // vdrive-master: the project's EtherCAT master as a command-line tool.
 //
-//   vdrive-master scan --iface IF [--state init|preop|safeop|op] [--json]
+//   vdrive-master scan --iface IF [--state init|preop] [--json]
 //   vdrive-master sdo-read  --iface IF --slave N --index 0x6041 [--sub 0] [--type u16] [--complete]
 //   vdrive-master sdo-write --iface IF --slave N --index 0x6040 [--sub 0] [--type u16] [--complete] VALUE
 //   vdrive-master od-list   --iface IF --slave N [--names]
@@ -24,6 +24,7 @@
 #include <sys/mman.h>
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -250,8 +251,20 @@ int main(int argc, char** argv) {
   bool json = false;
   CLI::App* scan = app.add_subcommand("scan", "Find the slaves on an interface and print their identities");
   scan->add_option("--iface,-i", iface, "Network interface the line is connected to")->required();
-  scan->add_option("--state,-s", state_text, "Bring every slave to this state: init, preop, safeop, op")
-      ->check(CLI::IsMember({"init", "preop", "safeop", "op"}, CLI::ignore_case));
+  // Safe-Op and Op need process data configured (PDO mapping, SM2/SM3, FMMUs) and, in Op, sent
+  // every cycle, which is `op`'s work: scan stops at Pre-Op and says where to go instead.
+  scan->add_option("--state,-s", state_text, "Bring every slave to this state: init or preop (Safe-Op and Op: use op)")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            std::string lower;
+            for (const char c : v) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            if (lower == "init" || lower == "preop") return {};
+            if (lower == "safeop" || lower == "op")
+              return v + ": scan configures no process data, which Safe-Op and Op need; `vdrive-master op` takes the "
+                         "line there (docs/master.md)";
+            return v + " is not a state scan can request: init or preop";
+          },
+          "init|preop"));
   scan->add_flag("--json", json, "Print JSON instead of one line per slave");
 
   SdoArgs sdo_args;
