@@ -25,7 +25,7 @@ void add_common(CLI::App* cmd, std::string& iface, std::size_t& slave, std::uint
 }
 
 // Scans, checks the slave number and takes the slave to `state`. False (with a line on stderr)
-// when the slave does not reach it: exit status 2.
+// when the slave does not reach it: exit status 1.
 bool open(Master& master, std::size_t slave, const std::string& state) {
   if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on the interface");
   if (slave >= master.slaves().size()) {
@@ -72,7 +72,7 @@ int FoeCommand::run_write() {
   const std::string name = name_.empty() ? std::filesystem::path(file_).filename().string() : name_;
   vdrive::link::RawSocketLink link(iface_);
   Master master(link);
-  if (!open(master, slave_, state_.empty() ? "boot" : state_)) return 2;
+  if (!open(master, slave_, state_.empty() ? "boot" : state_)) return 1;
   FoeClient foe(master, slave_);
   foe.write(name, data, password_);
   std::printf("%s: %zu bytes written as \"%s\" in %zu packets (%llu sent again, %llu busy)\n",
@@ -81,7 +81,7 @@ int FoeCommand::run_write() {
   // Boot -> Init restarts the drive into what it was given.
   if (!master.request_state(slave_, AlState::Init)) {
     std::fprintf(stderr, "vdrive-master: slave did not return to Init: %s\n", describe(master.slaves()[slave_]).c_str());
-    return 2;
+    return 1;
   }
   return 0;
 }
@@ -89,7 +89,7 @@ int FoeCommand::run_write() {
 int FoeCommand::run_read() {
   vdrive::link::RawSocketLink link(iface_);
   Master master(link);
-  if (!open(master, slave_, state_.empty() ? "preop" : state_)) return 2;
+  if (!open(master, slave_, state_.empty() ? "preop" : state_)) return 1;
   FoeClient foe(master, slave_);
   const std::vector<std::uint8_t> data = foe.read(name_, password_);
   std::ofstream out(file_, std::ios::binary);

@@ -12,13 +12,14 @@
 //
 // `op --sine` runs a CiA 402 program in Op (master/cia402_program.hpp): every drive is mapped for
 // csp, enabled, and follows 607Ah = start + U (1 - cos(2 pi f t)); each drive's largest following error
-// (60F4h) is printed against its window 6065h and exit status 2 reports a drive that faulted,
+// (60F4h) is printed against its window 6065h and exit status 1 reports a drive that faulted,
 // never got enabled or left the window.
 //
-// --slave N is the position printed by scan (0 = first slave). Exit status: 0 success, 1
-// link/line error, no slaves or a mailbox/SDO failure (an SDO abort prints its code and text), 2
-// the requested state was not reached or `op` saw wrong working counters, CLI11's own codes for a
-// bad command line. Errors are one line on stderr. Details: docs/master.md.
+// --slave N is the position printed by scan (0 = first slave). Exit status, as vdrive's: 0
+// success; 1 the line did not do what was asked (no reply, no slaves, a mailbox/SDO failure — an
+// SDO abort prints its code and text —, a state not reached, wrong working counters, a drive that
+// faulted); 2 a bad command line; 3 no such interface, or it is down; 4 not permitted. Errors are
+// one line on stderr. Details: docs/master.md.
 #include <CLI/CLI.hpp>
 #include <sched.h>
 #include <sys/mman.h>
@@ -42,6 +43,13 @@
 #include "vdrive/link/raw_socket_link.hpp"
 
 namespace {
+
+// The exit codes of vdrive (vdrive/cli/exit_codes.hpp), so scripts treat both tools alike.
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitBadArguments = 2;
+constexpr int kExitNoInterface = 3;
+constexpr int kExitNotPermitted = 4;
 
 using vdrive::master::AlState;
 using vdrive::master::Master;
@@ -111,7 +119,7 @@ int run_scan(const std::string& iface, const std::optional<AlState>& target, boo
   if (!reached) {
     std::fprintf(stderr, "vdrive-master: not every slave reached %s\n",
                  std::string(vdrive::master::to_string(*target)).c_str());
-    return 2;
+    return kExitFailure;
   }
   return 0;
 }
@@ -227,7 +235,7 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
   }
   if (!result.reached_op) {
     std::fprintf(stderr, "vdrive-master: %s\n", result.error.c_str());
-    return 2;
+    return kExitFailure;
   }
   std::printf("summary: %llu cycles of %lld us, working counter %u expected, %llu wrong, %llu lost, %llu not all in Op\n",
               static_cast<unsigned long long>(result.stats.cycles), static_cast<long long>(options.cycle / 1000),
@@ -236,9 +244,9 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
   if (!result.ok()) {
     std::fprintf(stderr, "vdrive-master: %llu wrong working counters in %llu cycles\n",
                  static_cast<unsigned long long>(result.stats.wrong_wkc), static_cast<unsigned long long>(result.stats.cycles));
-    return 2;
+    return kExitFailure;
   }
-  return drives_ok ? 0 : 2;
+  return drives_ok ? kExitOk : kExitFailure;
 }
 
 }  // namespace
@@ -319,7 +327,25 @@ int main(int argc, char** argv) {
   op->add_option("--frequency", sine_options.frequency_hz, "Sine frequency in Hz (default 1)")->check(CLI::Range(0.001, 100.0));
   op->add_option("--seconds", sine_seconds, "How long the sine runs (default 2)")->check(CLI::Range(0.01, 3600.0));
   vdrive::master::tool::FoeCommand foe(app);  // foe-write, foe-read
-  CLI11_PARSE(app, argc, argv);
+  app.set_version_flag("--version", std::string("vdrive-master ") + VDRIVE_VERSION);
+  app.footer(
+      "Examples:\n"
+      "  vdrive-master scan --iface m2m                         # the slaves, their identities and delays\n"
+      "  vdrive-master scan --iface m2m --state preop --json\n"
+      "  vdrive-master sdo-read --iface m2m --slave 0 --index 0x1018 --sub 1 --type u32\n"
+      "  vdrive-master op --iface m2m --dc --cycle-us 1000 --cycles 10000 --rt-priority 70\n"
+      "  vdrive-master op --iface m2m --dc --sine --revolutions 0.5\n"
+      "Exit status (as vdrive's): 0 done, 1 the line did not do it (no reply, state not reached, wrong working\n"
+      "counters, a drive faulted, an SDO abort), 2 a bad command line, 3 no such interface or it is down,\n"
+      "4 not permitted (root or CAP_NET_RAW). Details: docs/master.md");
+  // One line, as every other error of this tool.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string("vdrive-master: ") + e.what() + "\n"; });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, the version or the error
+    return code == 0 ? kExitOk : kExitBadArguments;
+  }
 
   try {
     if (*scan) {
@@ -341,8 +367,18 @@ int main(int argc, char** argv) {
       sine_run = sine_options;
     }
     return run_op(iface, op_options, rt_priority, sine_run);
+  } catch (const vdrive::link::LinkError& e) {
+    std::fprintf(stderr, "vdrive-master: %s\n", e.what());
+    switch (e.kind()) {
+      case vdrive::link::LinkError::Kind::NoInterface:
+      case vdrive::link::LinkError::Kind::InterfaceDown: return kExitNoInterface;
+      case vdrive::link::LinkError::Kind::NotPermitted: return kExitNotPermitted;
+      case vdrive::link::LinkError::Kind::BadName: return kExitBadArguments;
+      case vdrive::link::LinkError::Kind::System: break;
+    }
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "vdrive-master: %s\n", e.what());
-    return 1;
+    return kExitFailure;
   }
 }
