@@ -146,7 +146,10 @@ void add_object_routes(httplib::Server& s, WebContext& c) {
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
     const auto at = address(req);
     if (const auto* e = std::get_if<ApiResult>(&at)) return send(res, *e);
-    const auto [index, sub] = std::get<0>(at);
+    // Plain copies: a lambda may not capture structured bindings before C++20 compilers caught up
+    // (clang 14, the fuzz build's).
+    const std::uint16_t index = std::get<0>(at).first;
+    const std::uint8_t sub = std::get<0>(at).second;
     ApiResult result = loop_busy();
     c.calls.run([&](Nanos) { result = read_entry(c.network, std::get<std::size_t>(slave), index, sub); }, kLoopTimeout);
     send(res, result);
@@ -156,7 +159,8 @@ void add_object_routes(httplib::Server& s, WebContext& c) {
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
     const auto at = address(req);
     if (const auto* e = std::get_if<ApiResult>(&at)) return send(res, *e);
-    const auto [index, sub] = std::get<0>(at);
+    const std::uint16_t index = std::get<0>(at).first;  // plain copies, as above
+    const std::uint8_t sub = std::get<0>(at).second;
     const std::size_t i = std::get<std::size_t>(slave);
     const od::EntryDesc* desc = c.dictionaries[i]->find(index, sub);
     if (desc == nullptr) {  // as the slave answers a master: the store says which is missing
