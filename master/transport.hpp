@@ -31,9 +31,10 @@ public:
   // One attempt only, waiting at most `timeout` (cyclic process data: a lost frame is a wrong
   // working counter for that cycle, never a retry).
   bool exchange(Frame& frame, Nanos timeout);
-  // The same for several frames (at most 64, e.g. one cycle's, cycle_frames.hpp): all sent back to
-  // back, then replies taken in whatever order they come until each frame has its own or `timeout`
-  // has passed since the last send. Returns the answered frames as a mask (bit i: frames[i]).
+  // The same for several frames (e.g. one cycle's, cycle_frames.hpp): all sent back to back, then
+  // replies taken in whatever order they come until each frame has its own or `timeout` has passed
+  // since the last send. Returns the answered frames as a mask (bit i: frames[i]); so at most 64
+  // frames, and any beyond the 64th are not sent (CycleFrames refuses to make more).
   std::uint64_t exchange(std::span<Frame> frames, Nanos timeout);
   // Lets time pass until `deadline`, discarding whatever arrives (late replies). On a real link
   // this sleeps in the socket wait; under a virtual clock the link moves time.

@@ -143,7 +143,8 @@ int measure(vdrive::link::Link& link, const Options& o, const Line& line) {
     }
     const bool measured = n >= o.warmup;
     if (measured) trips.count_sent();
-    // The round trip of a cycle: first frame built and sent -> last reply in (one frame up to ~40 drives).
+    // The round trip of a cycle: first frame built and sent -> last reply in (one frame up to ~47 drives
+    // with the default mappings).
     const Nanos t0 = now_ns();
     cycle.build(image, transport.next_indexes(cycle.indexes_per_cycle()));
     const std::uint64_t answered = transport.exchange(cycle.frames(), timeout);
