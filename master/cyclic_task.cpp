@@ -1,55 +1,70 @@
 #include "master/cyclic_task.hpp"
 
 #include <algorithm>
-#include <array>
-
-#include "master/registers.hpp"
+#include <stdexcept>
+#include <string>
 
 namespace vdrive::master {
+namespace {
+
+// The LRW pieces of `layout`: cut on its slaves' windows, or, for a layout made by hand without
+// them, one piece with the layout's own expected counter.
+std::vector<LrwPiece> pieces_of(const ProcessImageLayout& layout) {
+  if (!layout.slaves.empty() || layout.size() == 0) {
+    return split_process_image(layout.logical_start, layout.size(), layout.slaves, CycleFrames::kMaxLrwBytes);
+  }
+  if (layout.size() > CycleFrames::kMaxLrwBytes) {
+    throw std::invalid_argument("process image of " + std::to_string(layout.size()) +
+                                " bytes without the slaves' FMMU windows: cannot split it");
+  }
+  return {LrwPiece{layout.logical_start, 0, static_cast<std::uint16_t>(layout.size()), layout.expected_wkc}};
+}
+
+std::uint16_t sum_expected(const std::vector<LrwPiece>& pieces) {
+  unsigned sum = 0;
+  for (const LrwPiece& p : pieces) sum += p.expected_wkc;
+  return static_cast<std::uint16_t>(sum);
+}
+
+}  // namespace
 
 CyclicTask::CyclicTask(Transport& transport, const ProcessImageLayout& layout, std::size_t slave_count, Nanos cycle,
                        std::uint16_t reference_station)
-    : transport_(transport), layout_(layout), slave_count_(static_cast<std::uint16_t>(slave_count)), cycle_(cycle),
-      reply_timeout_(std::max<Nanos>(cycle, 1'000'000)), reference_(reference_station), image_(layout.size()), frame_(transport.options().source) {}
+    : transport_(transport), inputs_from_(layout.output_bytes), slave_count_(static_cast<std::uint16_t>(slave_count)),
+      cycle_(cycle), reply_timeout_(std::max<Nanos>(cycle, 1'000'000)), image_(layout.size()),
+      frames_(transport.options().source, pieces_of(layout), reference_station, static_cast<std::uint16_t>(slave_count)),
+      all_frames_(frames_.count() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << frames_.count()) - 1),
+      expected_wkc_(sum_expected(frames_.pieces())) {}
 
 bool CyclicTask::run_cycle() {
   if (outputs_) outputs_(image_);
-  frame_.clear();
-  int lrw = -1;
-  if (!image_.empty()) lrw = frame_.add(Command::LRW, transport_.next_index(), layout_.logical_start, image_);
-  int frmw = -1;
-  if (reference_ != 0) frmw = frame_.add(Command::FRMW, transport_.next_index(), station_address(reference_, reg::kDcSystemTime), 8);
-  const int brd = frame_.add(Command::BRD, transport_.next_index(), station_address(0, reg::kAlStatus), 2);
-  if (requested_ != 0) {
-    const std::array<std::uint8_t, 2> control{static_cast<std::uint8_t>(requested_), 0};
-    frame_.add(Command::BWR, transport_.next_index(), station_address(0, reg::kAlControl), control);
-  }
-  (void)frmw;
+  frames_.build(image_, transport_.next_indexes(frames_.indexes_per_cycle()), requested_);
   ++stats_.cycles;
-  // The reply must be back within the cycle; otherwise this cycle's data is lost.
-  if (!transport_.exchange(frame_, reply_timeout_)) {
-    ++stats_.lost_frames;
-    ++stats_.wrong_wkc;
-    stats_.last_wkc = 0;
-    return false;
-  }
-  bool ok = true;
-  if (lrw >= 0) {
-    const auto slot = static_cast<std::size_t>(lrw);
-    stats_.last_wkc = frame_.wkc(slot);
-    ok = stats_.last_wkc == layout_.expected_wkc;
-    if (ok) {
-      // Only inputs that the slaves wrote this cycle are taken; outputs stay the master's.
-      const auto reply = frame_.data(slot);
-      std::copy(reply.begin() + layout_.output_bytes, reply.end(), image_.begin() + layout_.output_bytes);
+  // Every reply must be back within the cycle; a frame that is not loses its piece for this cycle.
+  const std::uint64_t answered = transport_.exchange(frames_.frames(), reply_timeout_);
+  bool ok = answered == all_frames_;
+  unsigned wkc = 0;
+  for (std::size_t i = 0; i < frames_.count(); ++i) {
+    if ((answered & (std::uint64_t{1} << i)) == 0) {
+      ++stats_.lost_frames;
+      continue;
+    }
+    wkc += frames_.lrw_wkc(i);
+    // Only inputs that the slaves wrote this cycle are taken; outputs stay the master's.
+    if (frames_.lrw_ok(i)) {
+      frames_.take_inputs(i, image_, inputs_from_);
     } else {
-      ++stats_.wrong_wkc;
+      ok = false;
     }
   }
-  const auto al = frame_.data(static_cast<std::size_t>(brd));
-  stats_.al_status = static_cast<std::uint16_t>(al[0] | (al[1] << 8));
-  stats_.al_wkc = frame_.wkc(static_cast<std::size_t>(brd));
-  if (requested_ != 0 && all_in(static_cast<AlState>(requested_))) requested_ = 0;
+  stats_.last_wkc = static_cast<std::uint16_t>(wkc);
+  if (!ok) ++stats_.wrong_wkc;
+  if ((answered & 1) != 0) {
+    stats_.al_status = frames_.al_status();
+    stats_.al_wkc = frames_.al_wkc();
+    if (requested_ != 0 && all_in(static_cast<AlState>(requested_))) requested_ = 0;
+  }
+  if (answered != all_frames_) return false;
   if (inputs_) inputs_(image_);
   return ok;
 }

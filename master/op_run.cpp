@@ -90,6 +90,11 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
   if (options.reply_timeout > 0) task.set_reply_timeout(options.reply_timeout);
   if (options.outputs) task.on_outputs(options.outputs);
   if (options.inputs) task.on_inputs(options.inputs);
+  if (task.frames_per_cycle() > 1) {
+    std::string pieces;
+    for (const LrwPiece& p : task.pieces()) pieces += fmt::format(" {}+{} B (WKC {})", p.logical, p.bytes, p.expected_wkc);
+    say(fmt::format("cyclic frames: {} per cycle, one LRW each:{}", task.frames_per_cycle(), pieces));
+  }
   task.run(options.safeop_cycles);
   task.request_state(AlState::Op);
   const auto op_cycles = static_cast<std::uint64_t>(std::max<Nanos>(1, options.op_timeout / options.cycle));

@@ -177,6 +177,7 @@ ProcessImageLayout configure_process_data(Master& master, std::vector<std::strin
     write_sm(master.transport(), s, in_sm, in_start, pd.input_bytes, in_control);
     write_fmmu(master.transport(), s, 0, out_at, pd.output_bytes, out_start, reg::kFmmuTypeWrite);
     write_fmmu(master.transport(), s, 1, in_at, pd.input_bytes, in_start, reg::kFmmuTypeRead);
+    layout.slaves.push_back({out_at, pd.output_bytes, in_at, pd.input_bytes});
     out_at += pd.output_bytes;
     in_at += pd.input_bytes;
   }

@@ -8,8 +8,10 @@
 //  2. sizes rounded up to whole bytes; SM2/SM3 written with the SII start address and control
 //     byte and the computed length (disabled when nothing is mapped);
 //  3. a logical process image: all slaves' outputs first, then all inputs, from logical address
-//     0; FMMU0 maps a slave's outputs (write), FMMU1 its inputs (read); one LRW moves the line.
-//     Expected LRW working counter: per slave +2 with outputs, +1 with inputs.
+//     0; FMMU0 maps a slave's outputs (write), FMMU1 its inputs (read). One LRW moves an image
+//     that fits a frame; a longer one goes as several LRWs cut on the slaves' windows
+//     (lrw_split.hpp, cycle_frames.hpp). Expected LRW working counter over the whole image: per
+//     slave +2 with outputs, +1 with inputs.
 //
 // Remapping: assign_pdos()/map_pdo() write 1C12h/1C13h or a mapping object the CiA 301 way
 // (subindex 0 to 0, the entries, subindex 0 to the count); call before configure_process_data().
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "master/coe.hpp"
+#include "master/lrw_split.hpp"
 #include "master/slave_info.hpp"
 
 namespace vdrive::master {
@@ -47,6 +50,7 @@ struct ProcessImageLayout {
   std::uint32_t output_bytes = 0;          // [logical_start, +output_bytes): every slave's outputs
   std::uint32_t input_bytes = 0;           // then every slave's inputs
   std::uint16_t expected_wkc = 0;          // of one LRW over the whole image
+  std::vector<SlaveImage> slaves;          // each slave's FMMU windows: what a piece's counter is
   std::uint32_t size() const { return output_bytes + input_bytes; }
 };
 

@@ -15,29 +15,44 @@ bool Transport::transceive(Frame& frame) {
   return false;
 }
 
-bool Transport::exchange(Frame& frame, Nanos timeout) {
-  if (!link_.send(frame.bytes())) {
-    ++timeouts_;
-    return false;
+bool Transport::exchange(Frame& frame, Nanos timeout) { return exchange(std::span<Frame>(&frame, 1), timeout) == 1; }
+
+std::uint64_t Transport::exchange(std::span<Frame> frames, Nanos timeout) {
+  const std::size_t n = std::min<std::size_t>(frames.size(), 64);
+  std::uint64_t waiting = 0;  // sent and not answered yet
+  for (std::size_t i = 0; i < n; ++i) {
+    if (link_.send(frames[i].bytes())) {
+      ++frames_sent_;
+      waiting |= std::uint64_t{1} << i;
+    }
   }
-  ++frames_sent_;
+  std::uint64_t answered = 0;
   const Nanos deadline = clock_.now() + timeout;
-  for (;;) {
+  while (waiting != 0) {
     const Nanos left = deadline - clock_.now();
     if (left <= 0) break;
     const Nanos before = clock_.now();
-    const std::size_t n = link_.receive(rx_, left);
-    if (n == 0) {
+    const std::size_t len = link_.receive(rx_, left);
+    if (len == 0) {
       // Nothing arrived. Under a virtual clock that the link did not advance, nothing will:
       // end this attempt instead of spinning.
       if (clock_.now() == before) break;
       continue;
     }
-    // Anything else (a late reply to an earlier attempt, other masters' traffic) is skipped.
-    if (frame.accept_reply({rx_.data(), n})) return true;
+    // Anything else (a late reply to an earlier attempt, a duplicate, other masters' traffic) is
+    // skipped: indexes differ, so a reply matches at most one waiting frame.
+    const std::span<const std::uint8_t> reply(rx_.data(), len);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t bit = std::uint64_t{1} << i;
+      if ((waiting & bit) != 0 && frames[i].accept_reply(reply)) {
+        waiting &= ~bit;
+        answered |= bit;
+        break;
+      }
+    }
   }
-  ++timeouts_;
-  return false;
+  if (answered != (n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1)) ++timeouts_;
+  return answered;
 }
 
 void Transport::idle_until(Nanos deadline) {

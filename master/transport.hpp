@@ -31,11 +31,22 @@ public:
   // One attempt only, waiting at most `timeout` (cyclic process data: a lost frame is a wrong
   // working counter for that cycle, never a retry).
   bool exchange(Frame& frame, Nanos timeout);
+  // The same for several frames (e.g. one cycle's, cycle_frames.hpp): all sent back to back, then
+  // replies taken in whatever order they come until each frame has its own or `timeout` has passed
+  // since the last send. Returns the answered frames as a mask (bit i: frames[i]); so at most 64
+  // frames, and any beyond the 64th are not sent (CycleFrames refuses to make more).
+  std::uint64_t exchange(std::span<Frame> frames, Nanos timeout);
   // Lets time pass until `deadline`, discarding whatever arrives (late replies). On a real link
   // this sleeps in the socket wait; under a virtual clock the link moves time.
   void idle_until(Nanos deadline);
   // Next datagram index (wraps at 256).
   std::uint8_t next_index() { return index_++; }
+  // The first of `count` consecutive indexes (one cycle's datagrams).
+  std::uint8_t next_indexes(std::uint8_t count) {
+    const std::uint8_t first = index_;
+    index_ = static_cast<std::uint8_t>(index_ + count);
+    return first;
+  }
 
   const Clock& clock() const { return clock_; }
   const TransportOptions& options() const { return options_; }

@@ -1,7 +1,7 @@
 // Capacity: can one core carry N drives at bus cycle T? The line (bench/capacity/csp_line.hpp):
 // N drives in Op with DC SYNC0 at T, enabled in csp following a sine with their default plants,
-// the master's frame every cycle (LRW of the process image + FRMW of the DC reference time + BRD
-// AL status). The work of cycle k is the frame through the line and the firmware IRQs it raises,
+// the master's frames every cycle (LRW of the process image, split over frames past ~71 drives,
+// + FRMW of the DC reference time + BRD AL status). The work of cycle k is the frame through the line and the firmware IRQs it raises,
 // then every ESC/firmware/drive/plant timer due before the start of cycle k+1; the master's own
 // share (building the frame, reading the reply: a few % of the cycle) is included.
 //

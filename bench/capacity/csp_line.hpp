@@ -4,9 +4,10 @@
 // synchronous position following a sine (master/cia402_program.hpp) with its default plant.
 // Virtual time: the master's link runs the event loop (runtime::run_until) for the round trip.
 //
-// After bring_up(), cycle() is one bus cycle of steady state: the master's frame (LRW of the
-// process image, FRMW of the DC reference time, BRD of the AL status) through the line, then
-// every ESC/firmware/drive/plant timer up to the next cycle. The benchmarks under bench/ time it.
+// After bring_up(), cycle() is one bus cycle of steady state: the master's frames (LRW of the
+// process image, in as many pieces and frames as it needs past ~71 drives; FRMW of the DC
+// reference time and BRD of the AL status in the first) through the line, then every
+// ESC/firmware/drive/plant timer up to the next cycle. The benchmarks under bench/ time it.
 #include <algorithm>
 #include <memory>
 #include <optional>
@@ -80,7 +81,7 @@ public:
   }
 
   // One bus cycle from the current cycle start: the frame, then every timer up to the next start.
-  // Returns false when the LRW working counter was wrong or the frame was lost.
+  // Returns false when an LRW working counter was wrong or a frame was lost.
   bool cycle() {
     advance_to(next_);
     const bool ok = task_->run_cycle();

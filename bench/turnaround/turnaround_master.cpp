@@ -1,6 +1,8 @@
 // bench_turnaround_master: the measuring end of the frame-turnaround benchmark. On one
-// end of a veth pair it sends a master's per-cycle frame (cycle_frame.hpp) to whatever answers on
-// the other end and records each round trip, send -> matching reply, on CLOCK_MONOTONIC.
+// end of a veth pair it sends a master's per-cycle frames (master/cycle_frames.hpp: the image cut
+// into LRW pieces as the project master's cyclic task cuts it, FRMW and BRD in the first frame) to
+// whatever answers on the other end and records each round trip, first send -> last matching
+// reply, on CLOCK_MONOTONIC.
 //
 //   --line op    the far end is a line of slaves (vdrive, KickCAT's network_simulator): the project
 //                master takes it to Op first (scan, PDOs, FMMUs/SMs, DC, Safe-Op, Op) so the LRW
@@ -25,17 +27,19 @@
 #include <string>
 #include <vector>
 
-#include "bench/turnaround/cycle_frame.hpp"
 #include "bench/turnaround/round_trips.hpp"
+#include "master/cycle_frames.hpp"
+#include "master/lrw_split.hpp"
 #include "master/master.hpp"
 #include "master/op_run.hpp"
+#include "master/transport.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 
 namespace {
 
 using vdrive::Nanos;
-using vdrive::bench::CycleFrames;
-using vdrive::bench::SlaveImage;
+using vdrive::master::CycleFrames;
+using vdrive::master::SlaveImage;
 using vdrive::bench::RoundTrips;
 
 struct Options {
@@ -113,17 +117,22 @@ std::optional<Line> bring_to_op(vdrive::link::Link& link, const Options& o) {
   line.logical_start = r.layout.logical_start;
   line.image_bytes = r.layout.size();
   line.reference = r.reference_station != 0 ? r.reference_station : master.slaves().front().station;
-  for (const vdrive::master::Slave& s : master.slaves()) {
-    const vdrive::master::SlaveProcessData& pd = s.process_data;
-    line.slaves.push_back({pd.output_logical, pd.output_bytes, pd.input_logical, pd.input_bytes});
-  }
+  line.slaves = r.layout.slaves;
   return line;
 }
 
 int measure(vdrive::link::Link& link, const Options& o, const Line& line) {
-  CycleFrames cycle(line.logical_start, line.image_bytes, line.reference, line.slaves);
+  CycleFrames cycle(vdrive::master::kDefaultMasterMac,
+                    vdrive::master::split_process_image(line.logical_start, static_cast<std::uint32_t>(line.image_bytes),
+                                                        line.slaves, CycleFrames::kMaxLrwBytes),
+                    line.reference, static_cast<std::uint16_t>(line.slaves.size()));
+  // The Transport sends a cycle's frames and matches their replies (one attempt: a late cycle is a
+  // lost one); the round trip is timed here, around it.
+  const vdrive::MonotonicClock clock;
+  vdrive::master::Transport transport(link, clock);
+  const std::vector<std::uint8_t> image(line.image_bytes, 0);  // outputs stay 0: the drives stay put
+  const std::uint64_t all = cycle.count() == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << cycle.count()) - 1;
   RoundTrips trips(o.samples);
-  std::array<std::uint8_t, vdrive::link::kMaxFrame> rx{};
   const Nanos period = o.rate_hz == 0 ? 0 : 1'000'000'000 / o.rate_hz;
   const Nanos timeout = static_cast<Nanos>(o.timeout_us) * 1000;
   Nanos next = now_ns();
@@ -134,30 +143,17 @@ int measure(vdrive::link::Link& link, const Options& o, const Line& line) {
     }
     const bool measured = n >= o.warmup;
     if (measured) trips.count_sent();
-    // The round trip of a cycle: first frame sent -> last reply in (one frame up to 16 drives).
+    // The round trip of a cycle: first frame built and sent -> last reply in (one frame up to ~47 drives
+    // with the default mappings).
     const Nanos t0 = now_ns();
-    bool sent = true;
-    for (std::size_t i = 0; i < cycle.count(); ++i) sent = link.send(cycle.build(i, n)) && sent;
-    if (!sent) continue;  // sent and lost
-    const Nanos deadline = t0 + timeout;
-    std::size_t answered = 0;
+    cycle.build(image, transport.next_indexes(cycle.indexes_per_cycle()));
+    const std::uint64_t answered = transport.exchange(cycle.frames(), timeout);
+    const Nanos t1 = now_ns();
+    if (answered != all || !measured) continue;  // lost
+    trips.add(t1 - t0);
     bool wkc_ok = true;
-    std::uint32_t seen = 0;
-    while (answered < cycle.count()) {
-      const Nanos left = deadline - now_ns();
-      if (left <= 0) break;
-      const std::size_t len = link.receive(rx, left);
-      if (len == 0) continue;
-      const int i = cycle.accept(std::span<const std::uint8_t>(rx.data(), len));
-      if (i < 0 || (seen & (1u << i)) != 0) continue;  // a late reply to an earlier cycle, a duplicate
-      seen |= 1u << i;
-      ++answered;
-      wkc_ok = wkc_ok && cycle.working_counters_ok(static_cast<std::size_t>(i));
-    }
-    if (answered == cycle.count() && measured) {
-      trips.add(now_ns() - t0);
-      if (!wkc_ok) trips.count_wrong_wkc();
-    }
+    for (std::size_t i = 0; i < cycle.count(); ++i) wkc_ok = wkc_ok && cycle.counters_ok(i);
+    if (!wkc_ok) trips.count_wrong_wkc();
   }
   const vdrive::bench::RoundTripSummary s = trips.summarize();
   const std::string mode = o.rate_hz == 0 ? "back-to-back" : fmt::format("{}Hz", o.rate_hz);
@@ -189,7 +185,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0u, 100000u));
   app.add_option("--samples", o.samples, "Measured frames (default 10000)")->check(CLI::Range(std::size_t{1}, std::size_t{10'000'000}));
   app.add_option("--warmup", o.warmup, "Frames sent before measuring (default 500)");
-  app.add_option("--image-bytes", o.image_bytes, "--line echo: LRW length (default 64)")->check(CLI::Range(std::size_t{1}, CycleFrames::kMaxImagePerFrame * CycleFrames::kMaxFrames));
+  app.add_option("--image-bytes", o.image_bytes, "--line echo: LRW length (default 64)")->check(CLI::Range(std::size_t{1}, CycleFrames::kMaxLrwBytes * (CycleFrames::kMaxFrames - 1)));
   app.add_option("--timeout-us", o.timeout_us, "A reply later than this is lost (default 10000)")->check(CLI::Range(1L, 10'000'000L));
   app.add_option("--busy-poll-us", o.busy_poll_us, "Spin this long on the socket before sleeping (default 0)")->check(CLI::Range(0L, 1'000'000L));
   app.add_option("--rt-priority", o.rt_priority, "SCHED_FIFO priority 1..99 and locked memory")->check(CLI::Range(1, 99));

@@ -181,7 +181,8 @@ TEST(OpLineDc, DriftingClocksStayWithin100NsWhileCycling) {
 TEST_F(OpLine, CyclicTaskCountsAWrongWorkingCounter) {
   ASSERT_TRUE(master.request_state(AlState::PreOp));
   ProcessImageLayout layout = configure_process_data(master);
-  layout.expected_wkc = static_cast<std::uint16_t>(layout.expected_wkc + 1);  // one slave more than there is
+  // One slave more than there is, with one output byte in the image: the LRW expects +2 more.
+  layout.slaves.push_back({layout.logical_start, 1, 0, 0});
   CyclicTask task(master.transport(), layout, 3, 1'000'000);
   task.run(10);
   EXPECT_EQ(task.stats().cycles, 10u);
