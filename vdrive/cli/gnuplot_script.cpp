@@ -12,7 +12,7 @@ namespace {
 constexpr std::array<std::string_view, 6> kPalette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9"};
 
 // A gnuplot single-quoted string: only the quote itself needs escaping (doubled).
-std::string quoted(std::string_view text) {
+std::string gnuplot_quoted(std::string_view text) {
   std::string out = "'";
   for (const char c : text) {
     if (c == '\n' || c == '\r') out += ' ';
@@ -55,8 +55,8 @@ std::string_view marker_colour(PlotMarker::Kind kind) {
 std::string gnuplot_script(const PlotSpec& spec) {
   std::string s;
   s += fmt::format("set terminal pngcairo size {},{} noenhanced font 'sans,10'\n", spec.width, spec.height);
-  s += fmt::format("set output {}\n", quoted(spec.output));
-  s += spec.title.empty() ? "set multiplot layout 4,1\n" : fmt::format("set multiplot layout 4,1 title {}\n", quoted(spec.title));
+  s += fmt::format("set output {}\n", gnuplot_quoted(spec.output));
+  s += spec.title.empty() ? "set multiplot layout 4,1\n" : fmt::format("set multiplot layout 4,1 title {}\n", gnuplot_quoted(spec.title));
   // Fixed margins (character cells) so the four panels line up whatever their tic labels.
   s += "set lmargin 14\nset rmargin 26\nset grid lc rgb '#dddddd'\nset key outside right top\n";
   s += "set format y '%g'\nset ytics nomirror\n";
@@ -67,7 +67,7 @@ std::string gnuplot_script(const PlotSpec& spec) {
                      k.time_s, k.time_s, marker_colour(k.kind));
   }
   for (std::size_t p = 0; p < std::size(kPanelNames); ++p) {
-    s += fmt::format("set ylabel {}\n", quoted(spec.ylabels[p].empty() ? std::string(kPanelNames[p]) : spec.ylabels[p]));
+    s += fmt::format("set ylabel {}\n", gnuplot_quoted(spec.ylabels[p].empty() ? std::string(kPanelNames[p]) : spec.ylabels[p]));
     s += p + 1 == std::size(kPanelNames) ? "set xlabel 'time (s)'\n" : "unset xlabel\n";
     if (p == 0) {
       for (std::size_t m = 0; m < std::min(markers, kMaxMarkerLabels); ++m) {
@@ -75,14 +75,14 @@ std::string gnuplot_script(const PlotSpec& spec) {
         const std::string& text = spec.markers[m].text;
         const std::string label = text.size() <= kMaxLabelChars ? text : text.substr(0, kMaxLabelChars - 3) + "...";
         s += fmt::format("set label {} {} at {:.9f}, graph 0.97 right rotate by 90 offset -0.3,0 font ',7' tc rgb '{}' front\n", m + 1,
-                         quoted(label), spec.markers[m].time_s, marker_colour(spec.markers[m].kind));
+                         gnuplot_quoted(label), spec.markers[m].time_s, marker_colour(spec.markers[m].kind));
       }
     }
     if (p == 1) s += "unset key\nunset label\n";  // one legend and the labels, beside and above the top panel
     s += "plot ";
     for (std::size_t i = 0; i < spec.series_names.size(); ++i) {
       s += fmt::format("{}{} index {} using 1:{} with lines lw 2 lc rgb '{}' title {}", i == 0 ? "" : ", ",
-                       i == 0 ? quoted(spec.data_file) : "''", i, p + 2, series_colour(i), quoted(spec.series_names[i]));
+                       i == 0 ? gnuplot_quoted(spec.data_file) : "''", i, p + 2, series_colour(i), gnuplot_quoted(spec.series_names[i]));
     }
     s += "\n";
   }
