@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <optional>
 #include <span>
@@ -22,6 +23,7 @@
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/line_changes.hpp"
 #include "vdrive/cli/telemetry_command.hpp"
 #include "vdrive/cli/veth_pair.hpp"
 #include "vdrive/cli/web_option.hpp"
@@ -86,6 +88,7 @@ public:
     if (thread_.joinable()) thread_.join();
   }
   const runtime::LoopCounters& counters() const { return counters_; }
+  const runtime::HostStalls& stalls() const { return counters_.stalls; }
   const web::WebServer* page() const { return page_.get(); }
 
 private:
@@ -131,6 +134,46 @@ private:
   std::thread thread_;
 };
 
+// Each host stall of the served line as it happens (runtime/host_stalls.hpp), printed from a
+// thread of its own: a drive that then fails has its cause on the screen.
+class StallWatch {
+public:
+  explicit StallWatch(const runtime::HostStalls& stalls)
+      : stalls_(stalls), seen_(stalls.count()), thread_([this] {
+          while (!stop_.load()) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            print();
+          }
+          print();
+        }) {}
+  ~StallWatch() {
+    stop_.store(true);
+    thread_.join();
+  }
+
+private:
+  void print() {
+    const std::vector<std::string> lines = host_stall_lines(stalls_, seen_);
+    for (const std::string& line : lines) fmt::print("{}\n", line);
+    if (!lines.empty()) std::fflush(stdout);
+  }
+
+  const runtime::HostStalls& stalls_;
+  std::uint64_t seen_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// What a failure of the demo adds when the host stalled during it: the drives' trouble may be
+// the host's, not vdrive's (docs/reliability.md "Host stalls").
+std::string stall_note(const runtime::HostStalls& stalls) {
+  const std::uint64_t n = stalls.count();
+  if (n == 0) return "";
+  return fmt::format(" after {} host stall{} (longest {}): the host did not run vdrive's loop for that long; see the "
+                     "\"host stall\" lines above and docs/reliability.md",
+                     n, n == 1 ? "" : "s", runtime::stall_ms(stalls.longest()));
+}
+
 void print_slaves(const master::Master& m) {
   for (const master::Slave& s : m.slaves()) fmt::print("  {}\n", master::describe(s));
 }
@@ -154,6 +197,7 @@ void run_demo(const DemoOptions& opt) {
     std::optional<int> domain;
     if (opt.telemetry) domain.emplace(telemetry_domain(opt.domain));
     ServedLine line(opt.drives, veth.slave_end(), domain, opt.web, opt.web_given);
+    StallWatch stall_watch(line.stalls());
     fmt::print("serving {} drive(s) on {}: {}\n", opt.drives.size(), veth.slave_end(), fmt::join(opt.drives, ", "));
     if (line.page() != nullptr) fmt::print("web page: {}  (open it in a browser; docs/web.md)\n", line.page()->url());
     // From a terminal the drives keep moving until Ctrl-C; in a script or CI the demo ends by itself.
@@ -219,18 +263,20 @@ void run_demo(const DemoOptions& opt) {
       }
       const master::OpRunResult r = master::run_to_op(m, op, [](const std::string& line) { fmt::print("  {}\n", line); });
       for (const std::string& note : r.notes) fmt::print("  note: {}\n", note);
-      if (!r.reached_op) throw CliError(kExitFailure, r.error);
+      if (!r.reached_op) throw CliError(kExitFailure, r.error + stall_note(line.stalls()));
       fmt::print("Op with DC at {} us: {} cycles, working counter {} expected, {} wrong, {} lost, worst lateness {} us\n",
                  opt.cycle_us, r.stats.cycles, r.layout.expected_wkc, r.stats.wrong_wkc, r.stats.lost_frames,
                  r.stats.max_late / 1000);
-      if (!r.ok()) throw CliError(kExitFailure, fmt::format("{} wrong working counters in Op", r.stats.wrong_wkc));
+      if (!r.ok())
+        throw CliError(kExitFailure, fmt::format("{} wrong working counters in Op{}", r.stats.wrong_wkc, stall_note(line.stalls())));
       if (program) {
         std::size_t failed = 0;
         for (const master::DriveResult& d : program->results()) {
           fmt::print("{}\n", master::describe(d));
           if (!d.ok()) ++failed;
         }
-        if (failed > 0) throw CliError(kExitFailure, fmt::format("{} drive(s) did not follow the sine", failed));
+        if (failed > 0)
+          throw CliError(kExitFailure, fmt::format("{} drive(s) did not follow the sine{}", failed, stall_note(line.stalls())));
       }
     }
 
@@ -242,6 +288,9 @@ void run_demo(const DemoOptions& opt) {
     view.reset();
     line.stop();
     fmt::print("frames served: {} in, {} out\n", line.counters().frames_in.load(), line.counters().frames_out.load());
+    const std::uint64_t stalls = line.stalls().count();
+    fmt::print("host stalls: {}\n", stalls == 0 ? std::string("none")
+                                                : fmt::format("{}, longest {}", stalls, runtime::stall_ms(line.stalls().longest())));
   } catch (const link::LinkError& e) {
     throw CliError(e.kind() == link::LinkError::Kind::NotPermitted ? kExitNotPermitted : kExitFailure, e.what());
   } catch (const master::MasterError& e) {
