@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
+#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -61,6 +62,17 @@ struct DemoOptions {
   std::optional<int> domain;
 };
 
+// The demo runs as root, so its line's loop and its master take SCHED_FIFO as `vdrive run
+// --rt-priority` and integration.cia402_sine do: on a busy host an ordinary thread waits for the
+// other tasks' scheduler tick now and then (4 ms here), a host stall the drives see
+// (docs/reliability.md). Memory is not locked (DDS maps large segments). Only the calling thread.
+constexpr int kLoopPriority = 80, kMasterPriority = 70;
+bool enter_fifo(int priority) {
+  sched_param param{};
+  param.sched_priority = priority;
+  return ::sched_setscheduler(0, SCHED_FIFO, &param) == 0;
+}
+
 // The drives' side of the demo: a Network served by the event loop in its own thread, which
 // alone touches the network from start to join. The line has the runtime fault control (for the
 // page's fault buttons), and optionally DDS telemetry and the web page, as `vdrive run` has.
@@ -79,6 +91,7 @@ public:
           // As `vdrive run` by default: where the kernel has it, a short slice lets the line's
           // wake-ups preempt the demo's master and the host's other tasks (runtime/time_slice.hpp).
           (void)runtime::set_time_slice(100'000);
+          realtime_ = enter_fifo(kLoopPriority);
           runtime::serve(network_, telemetry_ ? telemetry_->link() : impaired_, clock_, stop_, counters_, &services_);
         }) {}
   ~ServedLine() { stop(); }
@@ -89,6 +102,7 @@ public:
   }
   const runtime::LoopCounters& counters() const { return counters_; }
   const runtime::HostStalls& stalls() const { return counters_.stalls; }
+  bool realtime() const { return realtime_.load(); }
   const web::WebServer* page() const { return page_.get(); }
 
 private:
@@ -99,6 +113,7 @@ private:
   fault::ImpairedLink impaired_;
   control::FaultService faults_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> realtime_{false};
   runtime::LoopCounters counters_;
   std::unique_ptr<telemetry::LineTelemetry> telemetry_;
   std::unique_ptr<web::WebServer> page_;
@@ -261,6 +276,10 @@ void run_demo(const DemoOptions& opt) {
         op.recover = true;
         op.reply_timeout = 20'000'000;
       }
+      // The master's cycles on time too (threads started before this keep their policy).
+      const bool master_fifo = enter_fifo(kMasterPriority);
+      fmt::print("scheduling: the line's loop {}, the master {}\n", line.realtime() ? "SCHED_FIFO 80" : "normal (SCHED_FIFO refused)",
+                 master_fifo ? "SCHED_FIFO 70" : "normal (SCHED_FIFO refused)");
       const master::OpRunResult r = master::run_to_op(m, op, [](const std::string& line) { fmt::print("  {}\n", line); });
       for (const std::string& note : r.notes) fmt::print("  note: {}\n", note);
       if (!r.reached_op) throw CliError(kExitFailure, r.error + stall_note(line.stalls()));
