@@ -28,8 +28,10 @@ namespace vdrive::cli {
 namespace {
 
 // " (after a host stall of 12.3 ms)" when a real-time run's expectation failed at `time` soon
-// after a stall: the user can tell the host from the drive.
+// after a stall: the user can tell the host from the drive. Not for one decided when the run
+// ended (it was still open: nothing failed at that moment).
 std::string stall_before(const scenario::ScenarioResult& r, Nanos time) {
+  if (time >= r.ended) return "";
   for (auto it = r.stalls.rbegin(); it != r.stalls.rend(); ++it)
     if (it->time <= time && time - it->time <= runtime::kStallAftermath) return fmt::format(" (after a host stall of {})", runtime::stall_ms(it->length));
   return "";

@@ -25,6 +25,7 @@ struct ScenarioResult {
   std::string error;                 // the run stopped early (expectations then still reported)
   std::vector<std::string> log;      // steps and faults as they happened, one line each
   Nanos simulated = 0;               // virtual time covered
+  Nanos ended = 0;                   // when the run ended: what was still open was decided then
   double wall_seconds = 0.0;
   std::uint64_t cycles = 0, wrong_wkc = 0, lost_frames = 0;
   // Real time only: stalls of the host (counted; the first kMaxStallNotes described).

@@ -103,6 +103,7 @@ public:
     } catch (const std::exception& e) {
       fail(fmt::format("the master: {}", e.what()));
     }
+    result_.ended = clock_->now();
     for (ExpectationCheck& c : checks_) {
       const bool open = !c.result().decided;
       c.finish(clock_->now(), events_);
