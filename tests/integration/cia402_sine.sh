@@ -26,7 +26,13 @@ wait_for_line
   --sine --revolutions 0.25 --frequency 0.5 --seconds 4 >"$WORK/op.txt" 2>"$WORK/op.err"
 rc=$?
 cat "$WORK/op.txt" "$WORK/op.err"
-[ $rc -eq 0 ] || fail "vdrive-master op --sine exited $rc"
+# vdrive's own account of the host (docs/reliability.md "Host stalls"): each stall it saw, and the
+# count in its summary at exit; a failure says whether the host stalled.
+kill -TERM "$VDRIVE_PID"; wait "$VDRIVE_PID"; VDRIVE_PID=""
+stalls=$(grep -E "host stall" "$WORK/vdrive.log")
+echo "vdrive: ${stalls:-no host stall line}"
+echo "$stalls" | grep -qE "host stalls: (none|[0-9]+, longest)" || fail "vdrive's summary does not count host stalls"
+[ $rc -eq 0 ] || fail "vdrive-master op --sine exited $rc ($(echo "$stalls" | tail -1))"
 ok=$(grep -Ec "^drive 0x[0-9A-F]{4}: ok, " "$WORK/op.txt")
-[ "$ok" -eq 3 ] || fail "$ok of 3 drives followed the sine"
+[ "$ok" -eq 3 ] || fail "$ok of 3 drives followed the sine ($(echo "$stalls" | tail -1))"
 echo "PASS"

@@ -151,6 +151,56 @@ TEST_F(SamplerTest, FaultRequestsGoToTheHandlerAndFaultsBecomeEvents) {
   }
 }
 
+// A host stall the loop recorded (runtime/host_stalls.hpp) is an event of the line at the time
+// the loop ran again, with its length and threshold in us; an alarm that follows it within a
+// second says so; the bus samples count the stalls.
+TEST_F(SamplerTest, HostStallsAreEventsAndAnAlarmRightAfterOneSaysSo) {
+  control::FaultService faults(net_, nullptr, nullptr);
+  Sampler s(net_, 100.0, SamplerSources{&counters_, nullptr, &faults.injector()});
+  s.poll(0);
+  runtime::HostStall stall;
+  stall.time = 4'000'000;
+  stall.length = 12'340'000;
+  stall.threshold = 2'000'000;
+  stall.step_slaves = 0b11;
+  stall.control_steps = 98;
+  counters_.stalls.record(stall);
+  const control::ControlReply injected =
+      faults.handle(parse_telemetry_request(R"({"op":"inject","fault":{"kind":"alarm","slave":1,"code":"16.0"}})").fault, 5'000'000);
+  ASSERT_TRUE(injected.ok()) << injected.error;
+  for (Nanos t = 5'000'000; t <= 9'000'000; t += 125'000) {
+    clock_.set(t);
+    net_.tick(t);
+  }
+  s.poll(10'000'000);
+  drain(s);
+  const EventSample* host = nullptr;
+  const EventSample* alarm = nullptr;
+  for (const EventSample& e : events) {
+    if (e.kind == EventKind::host_stall) host = &e;
+    if (e.kind == EventKind::alarm_raised) alarm = &e;
+  }
+  ASSERT_NE(host, nullptr);
+  EXPECT_EQ(host->time, 4'000'000);
+  EXPECT_EQ(host->slave, 0);
+  EXPECT_EQ(host->value, 12'340u);
+  EXPECT_EQ(host->previous, 2'000u);
+  EXPECT_STREQ(host->text.data(), "host stall 12.3 ms (threshold 2.0 ms): drives 1-2 caught up 98 control steps");
+  EXPECT_STREQ(event_kind_name(host->kind), "host_stall");
+  ASSERT_NE(alarm, nullptr);
+  EXPECT_EQ(alarm->slave, 1);
+  EXPECT_THAT(std::string(alarm->text.data()), ::testing::EndsWith(" after a host stall of 12.3 ms"));
+  ASSERT_FALSE(buses.empty());
+  EXPECT_EQ(buses.back().host_stalls, 1u);
+  EXPECT_EQ(buses.back().longest_host_stall, 12'340'000);
+
+  // One event per stall: the next sample has none; an alarm long after a stall does not mention it.
+  events.clear();
+  s.poll(20'000'000);
+  drain(s);
+  for (const EventSample& e : events) EXPECT_NE(e.kind, EventKind::host_stall);
+}
+
 TEST_F(SamplerTest, WithoutAFaultHandlerFaultRequestsAreRefused) {
   Sampler s(net_, 100.0);
   ASSERT_TRUE(s.request(parse_telemetry_request(R"({"op":"clear_all"})")));

@@ -41,6 +41,28 @@ TEST(WebApi, SamplesComeWithSequenceNumbersAndOnlyNewOnesOnRequest) {
   EXPECT_LT(newer["axes"][0]["t"].size(), all["axes"][0]["t"].size() + 3);
 }
 
+// A host stall of the line's loop (docs/reliability.md) is in the event log, kind host_stall, with
+// its length and what the drives saw, and the line's counters count it.
+TEST(WebApi, HostStallsAreEventsAndCounted) {
+  WebLine line;
+  runtime::HostStall s;
+  s.time = 1'000'000;
+  s.length = 12'340'000;
+  s.threshold = 2'000'000;
+  s.sync0_slaves = s.step_slaves = 0b111;
+  s.sync0_pulses = 13;
+  s.control_steps = 98;
+  line.stalls().record(s);
+  ASSERT_TRUE(eventually([&] { return !line.get("/api/v1/events?kind=host_stall")["events"].empty(); }));
+  const json e = line.get("/api/v1/events?kind=host_stall")["events"][0];
+  EXPECT_EQ(e["slave"], 0);
+  EXPECT_EQ(e["value"], 12'340);
+  EXPECT_EQ(e["previous"], 2'000);
+  EXPECT_EQ(e["text"], "host stall 12.3 ms (threshold 2.0 ms): slaves 1-3 missed 12 SYNC0 pulses and caught up 98 control steps");
+  ASSERT_TRUE(eventually([&] { return line.get("/api/v1/line")["counters"]["host_stalls"] == 1; }));
+  EXPECT_EQ(line.get("/api/v1/line")["counters"]["longest_host_stall_ns"], 12'340'000);
+}
+
 TEST(WebApi, BadQueryParametersAreNamed) {
   WebLine line;
   auto r = line.client().Get("/api/v1/samples?since=abc");

@@ -47,6 +47,8 @@ public:
   }
 
   WebServer& server() { return *server_; }
+  // This loop never records a stall (it is not serve_once), so a test may: the one writer.
+  runtime::HostStalls& stalls() { return counters_.stalls; }
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", server_->port());
     c.set_read_timeout(5, 0);

@@ -3,12 +3,14 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
+#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <map>
 #include <memory>
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <optional>
 #include <span>
@@ -22,6 +24,7 @@
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "vdrive/cli/cli_error.hpp"
+#include "vdrive/cli/line_changes.hpp"
 #include "vdrive/cli/telemetry_command.hpp"
 #include "vdrive/cli/veth_pair.hpp"
 #include "vdrive/cli/web_option.hpp"
@@ -59,6 +62,17 @@ struct DemoOptions {
   std::optional<int> domain;
 };
 
+// The demo runs as root, so its line's loop and its master take SCHED_FIFO as `vdrive run
+// --rt-priority` and integration.cia402_sine do: on a busy host an ordinary thread waits for the
+// other tasks' scheduler tick now and then (4 ms here), a host stall the drives see
+// (docs/reliability.md). Memory is not locked (DDS maps large segments). Only the calling thread.
+constexpr int kLoopPriority = 80, kMasterPriority = 70;
+bool enter_fifo(int priority) {
+  sched_param param{};
+  param.sched_priority = priority;
+  return ::sched_setscheduler(0, SCHED_FIFO, &param) == 0;
+}
+
 // The drives' side of the demo: a Network served by the event loop in its own thread, which
 // alone touches the network from start to join. The line has the runtime fault control (for the
 // page's fault buttons), and optionally DDS telemetry and the web page, as `vdrive run` has.
@@ -77,6 +91,7 @@ public:
           // As `vdrive run` by default: where the kernel has it, a short slice lets the line's
           // wake-ups preempt the demo's master and the host's other tasks (runtime/time_slice.hpp).
           (void)runtime::set_time_slice(100'000);
+          realtime_ = enter_fifo(kLoopPriority);
           runtime::serve(network_, telemetry_ ? telemetry_->link() : impaired_, clock_, stop_, counters_, &services_);
         }) {}
   ~ServedLine() { stop(); }
@@ -86,6 +101,8 @@ public:
     if (thread_.joinable()) thread_.join();
   }
   const runtime::LoopCounters& counters() const { return counters_; }
+  const runtime::HostStalls& stalls() const { return counters_.stalls; }
+  bool realtime() const { return realtime_.load(); }
   const web::WebServer* page() const { return page_.get(); }
 
 private:
@@ -96,6 +113,7 @@ private:
   fault::ImpairedLink impaired_;
   control::FaultService faults_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> realtime_{false};
   runtime::LoopCounters counters_;
   std::unique_ptr<telemetry::LineTelemetry> telemetry_;
   std::unique_ptr<web::WebServer> page_;
@@ -131,6 +149,46 @@ private:
   std::thread thread_;
 };
 
+// Each host stall of the served line as it happens (runtime/host_stalls.hpp), printed from a
+// thread of its own: a drive that then fails has its cause on the screen.
+class StallWatch {
+public:
+  explicit StallWatch(const runtime::HostStalls& stalls)
+      : stalls_(stalls), seen_(stalls.count()), thread_([this] {
+          while (!stop_.load()) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            print();
+          }
+          print();
+        }) {}
+  ~StallWatch() {
+    stop_.store(true);
+    thread_.join();
+  }
+
+private:
+  void print() {
+    const std::vector<std::string> lines = host_stall_lines(stalls_, seen_);
+    for (const std::string& line : lines) fmt::print("{}\n", line);
+    if (!lines.empty()) std::fflush(stdout);
+  }
+
+  const runtime::HostStalls& stalls_;
+  std::uint64_t seen_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// What a failure of the demo adds when the host stalled during it: the drives' trouble may be
+// the host's, not vdrive's (docs/reliability.md "Host stalls").
+std::string stall_note(const runtime::HostStalls& stalls) {
+  const std::uint64_t n = stalls.count();
+  if (n == 0) return "";
+  return fmt::format(" after {} host stall{} (longest {}): the host did not run vdrive's loop for that long; see the "
+                     "\"host stall\" lines above and docs/reliability.md",
+                     n, n == 1 ? "" : "s", runtime::stall_ms(stalls.longest()));
+}
+
 void print_slaves(const master::Master& m) {
   for (const master::Slave& s : m.slaves()) fmt::print("  {}\n", master::describe(s));
 }
@@ -154,6 +212,7 @@ void run_demo(const DemoOptions& opt) {
     std::optional<int> domain;
     if (opt.telemetry) domain.emplace(telemetry_domain(opt.domain));
     ServedLine line(opt.drives, veth.slave_end(), domain, opt.web, opt.web_given);
+    StallWatch stall_watch(line.stalls());
     fmt::print("serving {} drive(s) on {}: {}\n", opt.drives.size(), veth.slave_end(), fmt::join(opt.drives, ", "));
     if (line.page() != nullptr) fmt::print("web page: {}  (open it in a browser; docs/web.md)\n", line.page()->url());
     // From a terminal the drives keep moving until Ctrl-C; in a script or CI the demo ends by itself.
@@ -217,20 +276,26 @@ void run_demo(const DemoOptions& opt) {
         op.recover = true;
         op.reply_timeout = 20'000'000;
       }
+      // The master's cycles on time too (threads started before this keep their policy).
+      const bool master_fifo = enter_fifo(kMasterPriority);
+      fmt::print("scheduling: the line's loop {}, the master {}\n", line.realtime() ? "SCHED_FIFO 80" : "normal (SCHED_FIFO refused)",
+                 master_fifo ? "SCHED_FIFO 70" : "normal (SCHED_FIFO refused)");
       const master::OpRunResult r = master::run_to_op(m, op, [](const std::string& line) { fmt::print("  {}\n", line); });
       for (const std::string& note : r.notes) fmt::print("  note: {}\n", note);
-      if (!r.reached_op) throw CliError(kExitFailure, r.error);
+      if (!r.reached_op) throw CliError(kExitFailure, r.error + stall_note(line.stalls()));
       fmt::print("Op with DC at {} us: {} cycles, working counter {} expected, {} wrong, {} lost, worst lateness {} us\n",
                  opt.cycle_us, r.stats.cycles, r.layout.expected_wkc, r.stats.wrong_wkc, r.stats.lost_frames,
                  r.stats.max_late / 1000);
-      if (!r.ok()) throw CliError(kExitFailure, fmt::format("{} wrong working counters in Op", r.stats.wrong_wkc));
+      if (!r.ok())
+        throw CliError(kExitFailure, fmt::format("{} wrong working counters in Op{}", r.stats.wrong_wkc, stall_note(line.stalls())));
       if (program) {
         std::size_t failed = 0;
         for (const master::DriveResult& d : program->results()) {
           fmt::print("{}\n", master::describe(d));
           if (!d.ok()) ++failed;
         }
-        if (failed > 0) throw CliError(kExitFailure, fmt::format("{} drive(s) did not follow the sine", failed));
+        if (failed > 0)
+          throw CliError(kExitFailure, fmt::format("{} drive(s) did not follow the sine{}", failed, stall_note(line.stalls())));
       }
     }
 
@@ -242,6 +307,9 @@ void run_demo(const DemoOptions& opt) {
     view.reset();
     line.stop();
     fmt::print("frames served: {} in, {} out\n", line.counters().frames_in.load(), line.counters().frames_out.load());
+    const std::uint64_t stalls = line.stalls().count();
+    fmt::print("host stalls: {}\n", stalls == 0 ? std::string("none")
+                                                : fmt::format("{}, longest {}", stalls, runtime::stall_ms(line.stalls().longest())));
   } catch (const link::LinkError& e) {
     throw CliError(e.kind() == link::LinkError::Kind::NotPermitted ? kExitNotPermitted : kExitFailure, e.what());
   } catch (const master::MasterError& e) {

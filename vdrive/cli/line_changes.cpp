@@ -30,6 +30,8 @@ std::vector<std::string> line_changes(const runtime::StatusSample& before, const
                                       const network::Network& network) {
   std::vector<std::string> lines;
   const std::size_t n = std::min({before.slaves.size(), now.slaves.size(), network.size()});
+  // A fault that follows a host stall says so: the user can tell the host from their master.
+  const std::string stall = runtime::after_stall(now.recent_stall);
   for (std::size_t i = 0; i < n; ++i) {
     const runtime::SlaveStatus& b = before.slaves[i];
     const runtime::SlaveStatus& a = now.slaves[i];
@@ -39,17 +41,33 @@ std::vector<std::string> line_changes(const runtime::StatusSample& before, const
     if ((a.al_status & 0x0F) != (b.al_status & 0x0F))
       lines.push_back(fmt::format("{}: {} -> {}", who, runtime::al_state_name(b.al_status), runtime::al_state_name(a.al_status)));
     if (is_error && (!was_error || a.al_status_code != b.al_status_code))
-      lines.push_back(fmt::format("{}: AL error 0x{:04X} {}, in {}", who, a.al_status_code,
-                                  master::al_status_code_text(a.al_status_code), runtime::al_state_name(a.al_status)));
+      lines.push_back(fmt::format("{}: AL error 0x{:04X} {}, in {}{}", who, a.al_status_code,
+                                  master::al_status_code_text(a.al_status_code), runtime::al_state_name(a.al_status), stall));
     else if (was_error && !is_error)
       lines.push_back(fmt::format("{}: AL error acknowledged", who));
     if (a.error_code != b.error_code || (a.error_code != 0 && a.alarm != b.alarm))
-      lines.push_back(a.error_code != 0 ? fmt::format("{}: {}", who, alarm_text(p, a.error_code, a.alarm))
+      lines.push_back(a.error_code != 0 ? fmt::format("{}: {}{}", who, alarm_text(p, a.error_code, a.alarm), stall)
                                         : fmt::format("{}: alarm cleared", who));
   }
   if (before.onward && now.onward && before.onward->link != now.onward->link)
     lines.push_back(now.onward->link ? "onward link up: the line goes on beyond the last slave here"
                                      : "onward link down: the line ends at the last slave here");
+  return lines;
+}
+
+std::vector<std::string> host_stall_lines(const runtime::HostStalls& stalls, std::uint64_t& seen) {
+  std::vector<std::string> lines;
+  const std::uint64_t count = stalls.count();
+  for (std::uint64_t k = seen + 1; k <= count; ++k) {
+    if (const std::optional<runtime::HostStall> s = stalls.get(k)) lines.push_back(runtime::describe(*s));
+    else if (k + runtime::HostStalls::kLog <= count) {  // overwritten: say how many in one go
+      const std::uint64_t skipped = count - runtime::HostStalls::kLog + 1 - k;
+      lines.push_back(fmt::format("{} more host stall{} (longest so far {})", skipped, skipped == 1 ? "" : "s",
+                                  runtime::stall_ms(stalls.longest())));
+      k += skipped - 1;
+    }
+  }
+  seen = count;
   return lines;
 }
 

@@ -7,6 +7,8 @@
 //   slave 1 (a6b): alarm Err16.0 Overload (603Fh FF10h)
 //   slave 1 (a6b): alarm cleared
 //   onward link down: the line ends at the last slave here      (`run --next-iface`)
+// An AL error or alarm seen within runtime::kStallAftermath of a host stall ends "after a host
+// stall of 12.3 ms". host_stall_lines() are the stalls themselves, logged at warning level.
 // A change that comes and goes between two samples is not seen.
 #include <string>
 #include <vector>
@@ -19,5 +21,9 @@ namespace vdrive::cli {
 
 std::vector<std::string> line_changes(const runtime::StatusSample& before, const runtime::StatusSample& now,
                                       const network::Network& network);
+
+// Each stall recorded since number `seen` (updated), as runtime::describe() says it; stalls the
+// record ring no longer holds are counted in one line.
+std::vector<std::string> host_stall_lines(const runtime::HostStalls& stalls, std::uint64_t& seen);
 
 }  // namespace vdrive::cli

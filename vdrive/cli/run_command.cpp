@@ -76,6 +76,7 @@ struct RunOptions {
   std::uint64_t fault_seed = 1;     // wire impairment's generator
   bool no_control = false;
   StatusMode status = StatusMode::automatic;  // --status / --no-status
+  double stall_ms = 1.0;  // --stall-threshold-ms: the floor of the host-stall threshold (run_status.hpp)
   RunTelemetryOptions telemetry;   // --telemetry: DDS telemetry (docs/telemetry.md)
   std::string web;                 // --web [ADDR:]PORT: the live page (docs/web.md)
   machine::NetworkFile network;    // read from network_file
@@ -408,6 +409,7 @@ void run(RunOptions o) {
                  network->segment().onward_slave() + 1, onward_link->carrier() ? "up" : "down: the line ends here until it comes up");
   if (control) spdlog::info("fault control on {}", control->path());
   runtime::LoopCounters counters;
+  counters.stalls.set_floor(static_cast<Nanos>(o.stall_ms * 1e6));
   RunStatus status(o.status, *network, counters, &wire);  // the live status line (run_status.hpp)
   const std::unique_ptr<telemetry::LineTelemetry> telemetry =
       start_run_telemetry(o.telemetry, *network, impaired, clock, counters, &faults, [&waker] { waker.wake(); });
@@ -444,6 +446,9 @@ void run(RunOptions o) {
   status.stop();  // its line ends before the summary
   spdlog::info("stopped: {} frames in, {} out, {} dropped, {} send failures", counters.frames_in.load(),
                counters.frames_out.load(), counters.dropped.load(), counters.send_failed.load());
+  if (const std::uint64_t stalls = counters.stalls.count(); stalls > 0)
+    spdlog::warn("host stalls: {}, longest {} (docs/reliability.md)", stalls, runtime::stall_ms(counters.stalls.longest()));
+  else spdlog::info("host stalls: none");
   if (onward_link)
     spdlog::info("onward through {}: {} frames sent on, {} came back", o.next_iface, counters.onward.load(),
                  counters.returned.load());
@@ -519,6 +524,7 @@ void add_run_command(CLI::App& app) {
                   "for root, else /tmp/vdrive-UID/IFACE.sock); see vdrive fault");
   cmd->add_flag("--no-control", o->no_control, "Serve without the runtime control socket")->excludes(control);
   add_status_options(cmd, o->status);
+  add_stall_option(cmd, o->stall_ms);
   cmd->add_option("--fault-seed", o->fault_seed, "Seed of the random wire faults (drop, corrupt, ...; default 1)");
   add_run_telemetry_options(cmd, o->telemetry);
   add_web_option(cmd, o->web);

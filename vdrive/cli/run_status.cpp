@@ -64,6 +64,14 @@ void add_status_options(CLI::App* cmd, StatusMode& mode) {
   on->excludes(off);
 }
 
+void add_stall_option(CLI::App* cmd, double& ms) {
+  cmd->add_option("--stall-threshold-ms", ms,
+                  "Name a host stall when the loop runs the line's timers later than max(MS, 2 bus cycles) "
+                  "(docs/reliability.md)")
+      ->check(CLI::Range(0.05, 10'000.0))
+      ->capture_default_str();
+}
+
 RunStatus::RunStatus(StatusMode mode, network::Network& network, const runtime::LoopCounters& counters,
                      const fault::WireImpairment* wire)
     : terminal_(::isatty(STDERR_FILENO) != 0), network_(network), counters_(counters), wire_(wire), status_(network.size()) {
@@ -102,11 +110,14 @@ void RunStatus::print_loop() {
   const int ticks_per_line = static_cast<int>((terminal_ ? kTerminalPeriod : kLogPeriod) / kChangePeriod);
   std::optional<runtime::StatusSample> before, last_change;
   last_change = runtime::take_sample(status_, counters_, steady_now());
+  std::uint64_t stalls_seen = counters_.stalls.count();
   auto next = std::chrono::steady_clock::now();
   for (int tick = 1; !stop_.load(); ++tick) {
     next += period;
     while (!stop_.load() && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     if (stop_.load()) break;
+    // Stalls first: a fault they explain is logged after them.
+    for (const std::string& stall : host_stall_lines(counters_.stalls, stalls_seen)) spdlog::warn("{}", stall);
     runtime::StatusSample now = runtime::take_sample(status_, counters_, steady_now());
     for (const std::string& change : line_changes(*last_change, now, network_)) spdlog::info("{}", change);
     last_change = now;
@@ -121,6 +132,7 @@ void RunStatus::print_loop() {
     before = std::move(now);
   }
   if (drawn_.exchange(false)) std::fprintf(stderr, "\n");
+  for (const std::string& stall : host_stall_lines(counters_.stalls, stalls_seen)) spdlog::warn("{}", stall);
 }
 
 }  // namespace vdrive::cli

@@ -6,7 +6,8 @@
 // (no lock, no allocation); a thread of its own formats and prints. On a terminal, a log line
 // erases the status line first (a sink put in front of spdlog's), and the status is redrawn below.
 // With or without the line, the thread logs what changes at info level (line_changes.hpp): AL
-// states, AL errors, drive alarms by name.
+// states, AL errors, drive alarms by name; and host stalls (runtime/host_stalls.hpp) at warning
+// level as they happen, a fault that follows one saying so.
 #include <atomic>
 #include <memory>
 #include <thread>
@@ -23,6 +24,8 @@ namespace vdrive::cli {
 enum class StatusMode { automatic, on, off };
 
 void add_status_options(CLI::App* cmd, StatusMode& mode);
+// --stall-threshold-ms MS: the floor of the host-stall threshold (runtime::HostStalls::set_floor).
+void add_stall_option(CLI::App* cmd, double& ms);
 
 // What the status line counts of a wire fault stage: both directions' dropped and corrupted frames.
 runtime::WireLosses wire_losses(const fault::WireImpairment& wire);

@@ -19,12 +19,23 @@
 #include "vdrive/control/fault_service.hpp"
 #include "vdrive/cli/veth_pair.hpp"
 #include "vdrive/link/link_error.hpp"
+#include "vdrive/runtime/host_stalls.hpp"
 #include "vdrive/scenario/junit_writer.hpp"
 #include "vdrive/scenario/scenario_loader.hpp"
 #include "vdrive/scenario/scenario_runner.hpp"
 
 namespace vdrive::cli {
 namespace {
+
+// " (after a host stall of 12.3 ms)" when a real-time run's expectation failed at `time` soon
+// after a stall: the user can tell the host from the drive. Not for one decided when the run
+// ended (it was still open: nothing failed at that moment).
+std::string stall_before(const scenario::ScenarioResult& r, Nanos time) {
+  if (time >= r.ended) return "";
+  for (auto it = r.stalls.rbegin(); it != r.stalls.rend(); ++it)
+    if (it->time <= time && time - it->time <= runtime::kStallAftermath) return fmt::format(" (after a host stall of {})", runtime::stall_ms(it->length));
+  return "";
+}
 
 struct ScenarioOptions {
   std::string path;
@@ -167,9 +178,13 @@ void run(const ScenarioOptions& o) {
     const std::size_t passed = r.expectations.size() - (r.failed() - (r.error.empty() ? 0 : 1));
     std::printf("%s %s: %zu of %zu expectations held, %.3f s simulated in %.2f s\n", r.passed() ? "PASS" : "FAIL",
                 r.name.c_str(), passed, r.expectations.size(), static_cast<double>(r.simulated) / 1e9, r.wall_seconds);
+    if (r.host_stalls > 0)
+      std::printf("  host stalls: %llu, longest %s (the host did not run the line's loop; docs/reliability.md)\n",
+                  static_cast<unsigned long long>(r.host_stalls), runtime::stall_ms(r.longest_host_stall).c_str());
     if (!r.error.empty()) std::printf("  %s: stopped: %s\n", r.file.c_str(), r.error.c_str());
     for (const auto& e : r.expectations)
-      if (!e.passed) std::printf("  %s:%d: %s: %s\n", r.file.c_str(), e.line, e.name.c_str(), e.message.c_str());
+      if (!e.passed)
+        std::printf("  %s:%d: %s: %s%s\n", r.file.c_str(), e.line, e.name.c_str(), e.message.c_str(), stall_before(r, e.time).c_str());
     std::fflush(stdout);
     failed += r.passed() ? 0 : 1;
     results.push_back(std::move(r));

@@ -171,8 +171,10 @@ void watch(const WatchOptions& o) {
       drawn = 0;
       for (const auto& [slave, a] : last_axis) fmt::print("\x1b[2K{}\n", telemetry_axis_line(a)), ++drawn;
       for (const auto& [slave, b] : last_bus) {
-        fmt::print("\x1b[2K  bus slave {}: frames in {} out {} dropped {}, rx errors {}, turnaround mean {} ns max {} ns, samples dropped {}\n",
-                   slave, b.frames_in, b.frames_out, b.frames_dropped, b.rx_errors, b.turnaround_mean, b.turnaround_max, b.samples_dropped);
+        fmt::print("\x1b[2K  bus slave {}: frames in {} out {} dropped {}, rx errors {}, turnaround mean {} ns max {} ns, samples dropped {}, "
+                   "host stalls {}\n",
+                   slave, b.frames_in, b.frames_out, b.frames_dropped, b.rx_errors, b.turnaround_mean, b.turnaround_max, b.samples_dropped,
+                   b.host_stalls);
         ++drawn;
       }
       std::fflush(stdout);

@@ -33,12 +33,14 @@ void serve(network::Network& network, link::Link& link, const Clock& clock,
   // Timed waits end at SYNC/firmware deadlines (cycles down to 125 us); the default 50 us timer
   // slack of a normal thread would show as jitter there. 1 ns: wake when asked.
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  counters.stalls.restart();  // the time before serving is no stall
   while (!stop.load(std::memory_order_relaxed)) serve_once(network, link, clock, kNever, counters, service);
 }
 
 void serve_once(network::Network& network, link::Link& link, const Clock& clock, Nanos until,
                 LoopCounters& counters, LoopService* service) {
   Nanos now = clock.now();
+  counters.stalls.check(network, now);  // late for the timers planned last round: a host stall
   if (service != nullptr) service->poll(now);
   FrameOvertake overtake(network, link, clock, counters, now);
   Nanos deadline = network.next_deadline();
@@ -47,7 +49,10 @@ void serve_once(network::Network& network, link::Link& link, const Clock& clock,
     overtake.service_owed_irqs();
     deadline = network.next_deadline();
     now = clock.now();
+    counters.stalls.check(network, now);  // time lost inside this round (a service, the firmware)
   }
+  // The line's timers are what the drives see; the loop means to run them then (now if behind).
+  counters.stalls.plan(deadline == kNever ? kNever : std::max(deadline, now));
   if (service != nullptr) deadline = std::min(deadline, service->next_deadline());
   deadline = std::min(deadline, until);
   const Nanos wait = deadline == kNever ? kMaxWait : std::clamp(deadline - now, Nanos{0}, kMaxWait);

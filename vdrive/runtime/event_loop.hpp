@@ -3,7 +3,8 @@
 // until the next timer deadline), runs it through the line, sends the reply, then runs due
 // timers. In real time a frame that arrives while the firmware runs overtakes it
 // (frame_overtake.hpp). No locks, no allocation; the counters are single-writer atomics so
-// another thread (a status line) may read them.
+// another thread (a status line) may read them. A round that finds the line's timers late beyond
+// a threshold records a host stall (LoopCounters::stalls, host_stalls.hpp).
 //
 // serve() runs in real time until `stop` is set; run_until() is the same loop in virtual time
 // for tests and scenarios: it handles every frame already waiting and jumps the VirtualClock from

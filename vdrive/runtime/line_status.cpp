@@ -51,6 +51,7 @@ void LineStatusPublisher::sample() {
 void LineStatusPublisher::poll(Nanos now) {
   if (now >= due_) {
     sample();
+    status_.publish_time(now);
     due_ = now + period_;
   }
   if (next_ != nullptr) next_->poll(now);
@@ -74,6 +75,9 @@ StatusSample take_sample(const LineStatus& status, const LoopCounters& counters,
                                     counters.onward.load(std::memory_order_relaxed),
                                     counters.returned.load(std::memory_order_relaxed)};
   s.wire = status.wire();
+  s.host_stalls = counters.stalls.count();
+  s.longest_stall = counters.stalls.longest();
+  s.recent_stall = counters.stalls.just_before(status.sampled_at());
   return s;
 }
 
@@ -119,6 +123,7 @@ std::string format_status_line(const StatusSample& now, const StatusSample* befo
   if (now.wire) line += fmt::format(" | wire fault dropped {} corrupted {}", now.wire->dropped, now.wire->corrupted);
   if (now.onward)
     line += fmt::format(" | onward {}, {} on, {} back", now.onward->link ? "up" : "down", now.onward->sent, now.onward->returned);
+  if (now.host_stalls > 0) line += fmt::format(" | host stalls {}, longest {}", now.host_stalls, stall_ms(now.longest_stall));
   return line;
 }
 

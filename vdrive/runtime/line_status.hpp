@@ -17,6 +17,7 @@
 
 #include "common/clock.hpp"
 #include "vdrive/runtime/event_loop.hpp"
+#include "vdrive/runtime/host_stalls.hpp"
 #include "vdrive/runtime/loop_service.hpp"
 
 namespace vdrive::network {
@@ -57,6 +58,10 @@ public:
     return WireLosses{wire_dropped_.load(std::memory_order_relaxed), wire_corrupted_.load(std::memory_order_relaxed)};
   }
   std::size_t slaves() const { return slaves_; }
+  // When the slaves were last published, on the loop's clock (so a reader can tell whether a
+  // host stall came just before what it shows).
+  void publish_time(Nanos now) { sampled_at_.store(now, std::memory_order_relaxed); }
+  Nanos sampled_at() const { return sampled_at_.load(std::memory_order_relaxed); }
   void publish(std::size_t i, const SlaveStatus& s) {
     packed_[i].store(std::uint64_t{s.al_status} | std::uint64_t{s.al_status_code} << 16 | std::uint64_t{s.rx_errors} << 32,
                      std::memory_order_relaxed);
@@ -77,6 +82,7 @@ private:
   std::array<std::atomic<std::uint32_t>, kMaxStatusSlaves> error_codes_{};
   std::atomic<std::uint64_t> wire_dropped_{0}, wire_corrupted_{0};
   std::atomic<bool> has_wire_{false};
+  std::atomic<Nanos> sampled_at_{0};
 };
 
 // Reads the ESCs (side-effect-free peeks) every `period` on the loop's thread.
@@ -113,12 +119,18 @@ struct StatusSample {
     std::uint64_t sent = 0, returned = 0;
   };
   std::optional<Onward> onward;  // none: the line ends in this process
+  // Host stalls (host_stalls.hpp): how many, the longest, and the latest if it ended at most
+  // kStallAftermath before the slaves were sampled (a fault seen now follows it).
+  std::uint64_t host_stalls = 0;
+  Nanos longest_stall = 0;
+  std::optional<HostStall> recent_stall;
 };
 StatusSample take_sample(const LineStatus& status, const LoopCounters& counters, Nanos now);
 
 // "3 slaves 1:Op 2:Op 3:SafeOp+E(001B) | frames 5210 in 5210 out, 1000/s | rx errors 0 | dropped 0 | send failed 0
-// | wire fault dropped 0 corrupted 0 | onward up, 5210 on, 5210 back" (the wire part only with a
-// wire fault stage, the onward part only where the line goes on beyond this process);
+// | wire fault dropped 0 corrupted 0 | onward up, 5210 on, 5210 back | host stalls 2, longest 12.3 ms"
+// (the wire part only with a wire fault stage, the onward part only where the line goes on beyond
+// this process, the stalls only after one);
 // the rate is frames in per second since `before` (none when there is no earlier sample). With
 // more than 8 slaves the states are counted instead ("40 slaves Op 39, SafeOp+E 1 (first: 7 001B)").
 std::string format_status_line(const StatusSample& now, const StatusSample* before);

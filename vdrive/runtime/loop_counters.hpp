@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cstdint>
 
+#include "vdrive/runtime/host_stalls.hpp"
+
 namespace vdrive::runtime {
 
 struct LoopCounters {
@@ -17,6 +19,9 @@ struct LoopCounters {
   std::atomic<std::uint64_t> returned{0};
   std::atomic<bool> onward_link{false};
   std::atomic<bool> has_onward{false};  // set once by OnwardLink
+  // Times the loop ran late because the host did not run it (host_stalls.hpp), with what the
+  // drives saw; written by serve_once, never in virtual time.
+  HostStalls stalls;
 };
 
 // Only the loop thread writes, so a relaxed load+store suffices (and avoids a locked RMW).

@@ -1,6 +1,8 @@
 #include "vdrive/scenario/junit_writer.hpp"
 
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include <tinyxml2.h>
 #include <fmt/format.h>
@@ -33,6 +35,15 @@ void write_junit(const std::string& path, const std::vector<ScenarioResult>& res
       }
       ++cases;
     };
+    if (r.host_stalls > 0) {  // a real-time run the host stalled: say so beside the verdicts
+      tinyxml2::XMLElement* props = suite->InsertNewChildElement("properties");
+      for (const auto& [name, value] : {std::pair<const char*, std::string>{"host_stalls", std::to_string(r.host_stalls)},
+                                        {"longest_host_stall_ns", std::to_string(r.longest_host_stall)}}) {
+        tinyxml2::XMLElement* p = props->InsertNewChildElement("property");
+        p->SetAttribute("name", name);
+        p->SetAttribute("value", value.c_str());
+      }
+    }
     if (!r.error.empty()) add("run", false, r.error, 0.0);
     for (const ExpectationResult& e : r.expectations)
       add(e.name, e.passed, e.passed ? e.message : fmt::format("line {}: {}", e.line, e.message), static_cast<double>(e.time) / 1e9);

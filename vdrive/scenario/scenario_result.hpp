@@ -11,6 +11,13 @@
 
 namespace vdrive::scenario {
 
+// A host stall in a real-time run (runtime/host_stalls.hpp): when, how long, what the drives saw.
+struct StallNote {
+  Nanos time = 0;
+  Nanos length = 0;
+  std::string text;
+};
+
 struct ScenarioResult {
   std::string name;
   std::string file;
@@ -18,8 +25,14 @@ struct ScenarioResult {
   std::string error;                 // the run stopped early (expectations then still reported)
   std::vector<std::string> log;      // steps and faults as they happened, one line each
   Nanos simulated = 0;               // virtual time covered
+  Nanos ended = 0;                   // when the run ended: what was still open was decided then
   double wall_seconds = 0.0;
   std::uint64_t cycles = 0, wrong_wkc = 0, lost_frames = 0;
+  // Real time only: stalls of the host (counted; the first kMaxStallNotes described).
+  std::uint64_t host_stalls = 0;
+  Nanos longest_host_stall = 0;
+  std::vector<StallNote> stalls;
+  static constexpr std::size_t kMaxStallNotes = 100;
 
   std::size_t failed() const {
     std::size_t n = error.empty() ? 0 : 1;

@@ -19,6 +19,7 @@
 #include "vdrive/network/network.hpp"
 #include "vdrive/od/entry_value.hpp"
 #include "vdrive/od/object_store.hpp"
+#include "vdrive/runtime/host_stalls.hpp"
 #include "vdrive/scenario/axis_control.hpp"
 #include "vdrive/scenario/event_log.hpp"
 #include "vdrive/scenario/pcapng_writer.hpp"
@@ -78,6 +79,7 @@ public:
       wire_->set_capture(capture_.get());
     }
     if (!o.trace_path.empty()) trace_ = std::make_unique<TraceWriter>(o.trace_path);
+    if (auto* rt = dynamic_cast<RealtimeWire*>(wire_.get())) loop_counters_ = &rt->counters();
     if (auto* rt = dynamic_cast<RealtimeWire*>(wire_.get()); rt && o.line_tap) {
       tap_ = o.line_tap(network_, rt->line(), *clock_, rt->counters());
       if (tap_) rt->attach(tap_->link(), &tap_->service());
@@ -101,6 +103,7 @@ public:
     } catch (const std::exception& e) {
       fail(fmt::format("the master: {}", e.what()));
     }
+    result_.ended = clock_->now();
     for (ExpectationCheck& c : checks_) {
       const bool open = !c.result().decided;
       c.finish(clock_->now(), events_);
@@ -124,6 +127,11 @@ public:
       result_.cycles = task_->stats().cycles;
       result_.wrong_wkc = task_->stats().wrong_wkc;
       result_.lost_frames = task_->stats().lost_frames;
+    }
+    if (loop_counters_ != nullptr) {
+      note_stalls();
+      result_.host_stalls = loop_counters_->stalls.count();
+      result_.longest_host_stall = loop_counters_->stalls.longest();
     }
     result_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
     return std::move(result_);
@@ -437,8 +445,25 @@ private:
     return drive::ObjectRef<std::int64_t>(network_.firmware(i).objects(), index).get();
   }
 
+  // Real time: each host stall the line's loop recorded, in the log and the report.
+  void note_stalls() {
+    const runtime::HostStalls& stalls = loop_counters_->stalls;
+    for (const std::uint64_t count = stalls.count(); stalls_seen_ < count;) {
+      const std::optional<runtime::HostStall> s = stalls.get(++stalls_seen_);
+      if (!s) continue;
+      const std::string text = runtime::describe(*s);
+      say(text);
+      if (result_.stalls.size() < ScenarioResult::kMaxStallNotes) result_.stalls.push_back({s->time, s->length, text});
+    }
+  }
+  // " after a host stall of 12.3 ms" for a fault seen now, if one came just before.
+  std::string after_stall() const {
+    return loop_counters_ != nullptr ? runtime::after_stall(loop_counters_->stalls.just_before(clock_->now())) : std::string();
+  }
+
   void observe() {
     const Nanos now = clock_->now();
+    if (loop_counters_ != nullptr) note_stalls();
     std::uint16_t common = 0;
     bool same = true;
     for (std::size_t i = 0; i < network_.size(); ++i) {
@@ -446,7 +471,8 @@ private:
       if (i == 0) common = al;
       same = same && al == common;
       if (al != last_al_[i]) {
-        say(fmt::format("slave {}: {} (AL status code 0x{:04X})", i + 1, state_name(al), peek16(i, kAlStatusCode)));
+        const std::uint16_t code = peek16(i, kAlStatusCode);
+        say(fmt::format("slave {}: {} (AL status code 0x{:04X}){}", i + 1, state_name(al), code, code != 0 ? after_stall() : ""));
         last_al_[i] = al;
       }
       if (is_drive(i)) {
@@ -454,7 +480,7 @@ private:
         const auto before = last_status_[i];
         events_.statusword(static_cast<int>(i + 1), sw, now);
         if ((sw & 0x0008) && !(before & 0x0008))
-          say(fmt::format("slave {}: Fault, 603Fh 0x{:04X}", i + 1, static_cast<std::uint16_t>(object(i, 0x603F))));
+          say(fmt::format("slave {}: Fault, 603Fh 0x{:04X}{}", i + 1, static_cast<std::uint16_t>(object(i, 0x603F)), after_stall()));
         if ((sw & 0x006F) == 0x0027 && (before & 0x006F) != 0x0027) say(fmt::format("slave {}: Operation enabled", i + 1));
         last_status_[i] = sw;
       }
@@ -548,6 +574,8 @@ private:
   Nanos next_trace_ = 0;
   std::uint64_t op_after_cycle_ = 0;
   std::vector<std::uint16_t> last_al_, last_status_;
+  const runtime::LoopCounters* loop_counters_ = nullptr;  // real time: the line's loop (host stalls)
+  std::uint64_t stalls_seen_ = 0;
   ScenarioResult result_;
 };
 

@@ -39,6 +39,7 @@ const char* event_kind_name(EventKind kind) {
     case EventKind::fault_cleared: return "fault_cleared";
     case EventKind::plant_set: return "plant_set";
     case EventKind::signal: return "signal";
+    case EventKind::host_stall: return "host_stall";
   }
   return "unknown";
 }
@@ -62,6 +63,7 @@ Sampler::Sampler(network::Network& network, double rate_hz, SamplerSources sourc
     last_al_.push_back(network_.esc(i).peek_u16(kAlStatus));
   }
   last_faults_.reserve(kMaxWatchedFaults);
+  if (sources_.counters != nullptr) stalls_seen_ = sources_.counters->stalls.count();  // earlier ones are no news
   for (std::size_t i = 0; i < network_.signals().size(); ++i) {
     const network::NamedSignal& sig = network_.signals()[i];
     signal_labels_.push_back(fmt::format("{} ({})", sig.name, network_.format_point(sig.point)));
@@ -105,13 +107,17 @@ void Sampler::event(Nanos now, std::uint16_t slave, EventKind kind, std::uint32_
 
 void Sampler::sample(Nanos now) {
   const TurnaroundPeriod t = sources_.turnaround != nullptr ? sources_.turnaround->take() : TurnaroundPeriod{};
+  sample_stalls();
+  // A fault seen now that follows a host stall says so (the text, fixed size: no allocation).
+  const RecentStall stall(sources_.counters, now);
   for (std::size_t i = 0; i < network_.size(); ++i) {
     esc::Esc& e = network_.esc(i);
     const auto slave = static_cast<std::uint16_t>(i + 1);
     const std::uint16_t al = e.peek_u16(kAlStatus), code = e.peek_u16(kAlStatusCode);
     if (al != last_al_[i]) {
-      char text[64];
-      *fmt::format_to_n(text, sizeof text - 1, "AL status 0x{:02X} -> 0x{:02X}, status code 0x{:04X}", last_al_[i], al, code).out = '\0';
+      char text[96];
+      *fmt::format_to_n(text, sizeof text - 1, "AL status 0x{:02X} -> 0x{:02X}, status code 0x{:04X}{}", last_al_[i], al, code,
+                        (al & ecat::reg::kAlErrorFlag) != 0 ? stall.text() : "").out = '\0';
       event(now, slave, EventKind::al_state, al, last_al_[i], text);
       last_al_[i] = al;
     }
@@ -141,8 +147,9 @@ void Sampler::sample(Nanos now) {
       }
       push(a);
       if (a.error_code != last_error_[i]) {
-        char text[64];
-        *fmt::format_to_n(text, sizeof text - 1, "603Fh 0x{:04X} -> 0x{:04X}", last_error_[i], a.error_code).out = '\0';
+        char text[96];
+        *fmt::format_to_n(text, sizeof text - 1, "603Fh 0x{:04X} -> 0x{:04X}{}", last_error_[i], a.error_code,
+                          a.error_code != 0 ? stall.text() : "").out = '\0';
         event(now, slave, a.error_code != 0 ? EventKind::alarm_raised : EventKind::alarm_cleared, a.error_code, last_error_[i], text);
         last_error_[i] = a.error_code;
       }
@@ -165,10 +172,38 @@ void Sampler::sample(Nanos now) {
     b.turnaround_min = t.min;
     b.turnaround_mean = t.mean;
     b.turnaround_max = t.max;
+    if (sources_.counters != nullptr) {
+      b.host_stalls = sources_.counters->stalls.count();
+      b.longest_host_stall = sources_.counters->stalls.longest();
+    }
     push(b);
   }
   if (sources_.faults != nullptr) sample_faults(now);
   sample_signals(now);
+}
+
+// Each host stall the loop recorded since the last sample is an event at the time the loop ran
+// again: value its length and previous the threshold, in microseconds; the text says what the
+// drives saw (runtime::describe). On the loop thread, so the ring is read as it was written.
+void Sampler::sample_stalls() {
+  if (sources_.counters == nullptr) return;
+  const runtime::HostStalls& stalls = sources_.counters->stalls;
+  for (const std::uint64_t count = stalls.count(); stalls_seen_ < count;) {
+    const std::optional<runtime::HostStall> s = stalls.get(++stalls_seen_);
+    if (!s) continue;  // more stalls in one period than the ring holds: the counter has them
+    EventSample e;
+    e.time = s->time;
+    e.kind = EventKind::host_stall;
+    e.value = static_cast<std::uint32_t>(std::min<Nanos>(s->length / 1000, UINT32_MAX));
+    e.previous = static_cast<std::uint32_t>(std::min<Nanos>(s->threshold / 1000, UINT32_MAX));
+    runtime::describe(*s, e.text);
+    push(e);
+  }
+}
+
+Sampler::RecentStall::RecentStall(const runtime::LoopCounters* counters, Nanos now) {
+  const std::optional<runtime::HostStall> s = counters != nullptr ? counters->stalls.just_before(now) : std::nullopt;
+  if (s) *fmt::format_to_n(text_.data(), text_.size() - 1, " after a host stall of {:.1f} ms", static_cast<double>(s->length) / 1e6).out = '\0';
 }
 
 // A named signal's change is an event (value and previous truncated to 32 bits; the text has

@@ -3,13 +3,15 @@
 // it copies each slave's values (AL state from its ESC; 6041h, 6040h, 6061h, 6064h, 606Ch, 6077h,
 // 60F4h, 603Fh and the plant's temperatures for a drive) and the line's counters into a
 // preallocated SPSC queue, and notes events by comparing with the previous sample: AL state
-// changes, 603Fh raised or cleared, faults started or ended (of the FaultInjector it watches,
+// changes, 603Fh raised or cleared (" after a host stall of 12.3 ms" when one came just before),
+// host stalls (runtime/host_stalls.hpp), faults started or ended (of the FaultInjector it watches,
 // whoever injected them), named signals (network/signal_point.hpp) changed. A full queue drops the sample and counts it; nothing blocks, nothing
 // allocates. Changes that come and go within one period are not seen.
 //
 // It also carries out the control topic's requests on the loop thread: they arrive through a
 // second queue (request()), fault requests go to the fault handler (FaultService::handle in
 // vdrive run), plant changes to the slave's plant, and replies go back through a third queue.
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -74,6 +76,16 @@ private:
   void sample(Nanos now);
   void sample_faults(Nanos now);
   void sample_signals(Nanos now);
+  void sample_stalls();
+  // " after a host stall of 12.3 ms" if one ended just before `now`, else "".
+  class RecentStall {
+  public:
+    RecentStall(const runtime::LoopCounters* counters, Nanos now);
+    const char* text() const { return text_.data(); }
+
+  private:
+    std::array<char, 48> text_{};
+  };
   void push(const Sample& s);
   void event(Nanos now, std::uint16_t slave, EventKind kind, std::uint32_t value, std::uint32_t previous, const char* text);
   control::ControlReply handle(const TelemetryRequest& r, Nanos now);
@@ -91,6 +103,7 @@ private:
   runtime::SpscQueue<TelemetryRequest, 8> requests_;
   runtime::SpscQueue<TelemetryReply, 8> replies_;
   std::atomic<std::uint64_t> dropped_{0};
+  std::uint64_t stalls_seen_ = 0;  // host stalls already sent as events
   FaultHandler fault_handler_;
 };
 

@@ -38,16 +38,19 @@ struct BusSample {
   std::uint64_t samples_dropped = 0;
   // Frame in to reply out over the sample period; all 0 when no frame came.
   Nanos turnaround_last = 0, turnaround_min = 0, turnaround_mean = 0, turnaround_max = 0;
+  // Host stalls so far and the longest (runtime/host_stalls.hpp; the same in every slave's sample).
+  std::uint64_t host_stalls = 0;
+  Nanos longest_host_stall = 0;
 };
 
-enum class EventKind : std::uint8_t { al_state, alarm_raised, alarm_cleared, fault_injected, fault_cleared, plant_set, signal };
+enum class EventKind : std::uint8_t { al_state, alarm_raised, alarm_cleared, fault_injected, fault_cleared, plant_set, signal, host_stall };
 
 struct EventSample {
   Nanos time = 0;
   std::uint16_t slave = 0;  // 0: the line
   EventKind kind = EventKind::al_state;
   std::uint32_t value = 0, previous = 0;
-  std::array<char, 96> text{};  // NUL-terminated
+  std::array<char, 128> text{};  // NUL-terminated (a host stall's description is the longest)
 };
 
 using Sample = std::variant<AxisSample, BusSample, EventSample>;

@@ -58,6 +58,8 @@ BusSample to_sample(const msg::BusState_& m) {
   b.turnaround_min = m.turnaround_min_ns();
   b.turnaround_mean = m.turnaround_mean_ns();
   b.turnaround_max = m.turnaround_max_ns();
+  b.host_stalls = m.host_stalls();
+  b.longest_host_stall = m.longest_host_stall_ns();
   return b;
 }
 

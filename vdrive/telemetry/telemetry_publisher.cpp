@@ -71,6 +71,8 @@ struct TelemetryPublisher::Impl {
     m.turnaround_min_ns(b.turnaround_min);
     m.turnaround_mean_ns(b.turnaround_mean);
     m.turnaround_max_ns(b.turnaround_max);
+    m.host_stalls(b.host_stalls);
+    m.longest_host_stall_ns(b.longest_host_stall);
     bus->write(&m);
   }
 

@@ -193,7 +193,8 @@ json LineRecord::line(Nanos now) const {
     for (const std::uint8_t c : r.lost_links) lost += c;
   }
   j["counters"] = {{"frames_in", bus_.frames_in}, {"frames_out", bus_.frames_out}, {"frames_dropped", bus_.frames_dropped},
-                   {"send_failed", bus_.send_failed}, {"rx_errors", rx}, {"lost_links", lost}};
+                   {"send_failed", bus_.send_failed}, {"rx_errors", rx}, {"lost_links", lost},
+                   {"host_stalls", bus_.host_stalls}, {"longest_host_stall_ns", bus_.longest_host_stall}};
   json slaves = json::array();
   for (std::size_t i = 0; i < slaves_.size(); ++i) slaves.push_back(slave_json(i));
   j["slaves"] = std::move(slaves);

@@ -5,7 +5,7 @@
 (() => {
   const API = '/api/v1';
   const EVENT_KINDS = ['al_state', 'alarm_raised', 'alarm_cleared', 'fault_injected', 'fault_cleared', 'fault_refused',
-    'plant_set', 'signal', 'od_write', 'od_abort', 'sdo_abort', 'scenario'];
+    'plant_set', 'signal', 'host_stall', 'od_write', 'od_abort', 'sdo_abort', 'scenario'];
   const TEXT_TYPES = /^(VS|US|VISIBLE_STRING|UNICODE_STRING)$/i;   // written as text; everything else as a number or hex
   const MAX_EVENTS = 2000;           // what the server keeps, so a reload shows the same log
   const MAX_ROWS = 400;              // rows in the table: an alarm storm on 64 drives must not lay out thousands
@@ -244,6 +244,7 @@
     const parts = [
       ['frames in', c.frames_in], ['out', c.frames_out], ['dropped', c.frames_dropped],
       ['send failed', c.send_failed], ['rx errors', c.rx_errors], ['lost links', c.lost_links],
+      ['host stalls', c.host_stalls || 0],
     ];
     const sig = parts.map(p => p[1]).join(',');
     if (node.__sig === sig) return;
