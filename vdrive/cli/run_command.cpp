@@ -300,6 +300,7 @@ void run_in_parts(RunOptions o) {
     if (o.busy_poll_us != 0) a.insert(a.end(), {"--busy-poll-us", std::to_string(o.busy_poll_us)});
     if (o.no_rx_ring) a.push_back("--no-rx-ring");
     if (o.no_qdisc_bypass) a.push_back("--no-qdisc-bypass");
+    a.insert(a.end(), {"--stall-threshold-ms", fmt::format("{}", o.stall_ms)});
     return a;
   };
   PartProcesses others(parts, fmt::format("vd{}p", ::getpid() % 100000), o.netns, child_args);
