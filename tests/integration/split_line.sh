@@ -16,48 +16,27 @@ MASTER="$BUILD/master/vdrive-master"
 
 # shellcheck source=lib/veth_line.sh
 . "$(dirname "$0")/lib/veth_line.sh"
+# shellcheck source=lib/split_line_checks.sh
+. "$(dirname "$0")/lib/split_line_checks.sh"
 require_tools python3
 
 DRIVES=(--drive a6b ds5c1 ds1000a)
 
-# Everything scan --json says of a slave but what depends on timing (delays) and state.
-identities() {
-  python3 -c '
-import json, sys
-for s in json.load(open(sys.argv[1]))["slaves"]:
-    s.pop("delay_ns", None); s.pop("al_status", None); s.pop("al_status_code", None)
-    print(json.dumps(s, sort_keys=True))' "$1"
-}
-
-delays() {
-  python3 -c '
-import json, sys
-print(" ".join(str(s["delay_ns"]) for s in json.load(open(sys.argv[1]))["slaves"]))' "$1"
-}
-
 start_line "${DRIVES[@]}"
 wait_for_line --json
 cp "$WORK/scan.out" "$WORK/one.json"
-identities "$WORK/one.json" >"$WORK/one.txt"
+scan_identities "$WORK/one.json" >"$WORK/one.txt"
 [ "$(wc -l <"$WORK/one.txt")" -eq 3 ] || { cat "$WORK/one.json"; fail "one process: not 3 slaves"; }
 
 restart_line --processes 2 "${DRIVES[@]}"
 wait_for_line --json
 cp "$WORK/scan.out" "$WORK/two.json"
-identities "$WORK/two.json" >"$WORK/two.txt"
+scan_identities "$WORK/two.json" >"$WORK/two.txt"
 diff "$WORK/one.txt" "$WORK/two.txt" || fail "two processes: the line does not look as in one process"
-read -r d0 d1 d2 < <(delays "$WORK/two.json")
-echo "delays in two processes: $d0 $d1 $d2 ns (one process: $(delays "$WORK/one.json"))"
-[ "$d0" -eq 0 ] && [ "$d1" -gt "$d0" ] && [ "$d2" -gt "$d1" ] || fail "delays do not increase along the line: $d0 $d1 $d2"
+expect_delays_increase "$WORK/two.json" "in two processes (one process: $(scan_delays "$WORK/one.json"))"
 grep -q "part 2 (slave 3) serves" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "no child part logged"; }
 
-"$MASTER" op --rt-priority 70 --iface "$M_IF" --dc --cycle-us 1000 --cycles 3000 \
-  --reply-timeout-us 200000 >"$WORK/op.txt" 2>"$WORK/op.err"
-rc=$?
-cat "$WORK/op.txt" "$WORK/op.err"
-[ $rc -eq 0 ] || fail "vdrive-master op exited $rc"
-grep -Eq "^summary: 3000 cycles of 1000 us, working counter [0-9]+ expected, 0 wrong, 0 lost, 0 not all in Op" "$WORK/op.txt" \
-  || fail "op over two processes: not 3000 cycles with zero wrong working counters"
+expect_clean_op "op over two processes"
 
 # The second part ends: the line closes at slave 2.
 child=$(pgrep -P "$VDRIVE_PID" -f "run --iface vd") || fail "no child process of vdrive run"

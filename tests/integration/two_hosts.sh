@@ -16,6 +16,8 @@ MASTER="$BUILD/master/vdrive-master"
 
 # shellcheck source=lib/veth_line.sh
 . "$(dirname "$0")/lib/veth_line.sh"
+# shellcheck source=lib/split_line_checks.sh
+. "$(dirname "$0")/lib/split_line_checks.sh"
 require_tools python3
 
 NS_B="vdtb-$$"
@@ -34,11 +36,7 @@ slaves() { python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["
 # One process first: what the master should see.
 start_line --drive a6b ds5c1 ds1000a
 wait_for_line --json
-python3 -c '
-import json, sys
-for s in json.load(open(sys.argv[1]))["slaves"]:
-    for k in ("delay_ns", "al_status", "al_status_code"): s.pop(k, None)
-    print(json.dumps(s, sort_keys=True))' "$WORK/scan.out" >"$WORK/one.txt"
+scan_identities "$WORK/scan.out" >"$WORK/one.txt"
 kill "$VDRIVE_PID"; wait "$VDRIVE_PID" 2>/dev/null
 
 # The cable between the hosts.
@@ -52,25 +50,12 @@ B_PID=$!
 ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --next-iface "$A_OUT" --drive a6b ds5c1 >"$WORK/vdrive.log" 2>&1 &
 VDRIVE_PID=$!
 wait_for_line --json
-python3 -c '
-import json, sys
-for s in json.load(open(sys.argv[1]))["slaves"]:
-    for k in ("delay_ns", "al_status", "al_status_code"): s.pop(k, None)
-    print(json.dumps(s, sort_keys=True))' "$WORK/scan.out" >"$WORK/two.txt"
+scan_identities "$WORK/scan.out" >"$WORK/two.txt"
 diff "$WORK/one.txt" "$WORK/two.txt" || fail "over two hosts the line does not look as in one process"
-delays=$(python3 -c 'import json,sys; print(" ".join(str(s["delay_ns"]) for s in json.load(open(sys.argv[1]))["slaves"]))' "$WORK/scan.out")
-echo "delays over two hosts: $delays ns"
-read -r d0 d1 d2 <<<"$delays"
-[ "$d0" -eq 0 ] && [ "$d1" -gt "$d0" ] && [ "$d2" -gt "$d1" ] || fail "delays do not increase along the line: $delays"
+expect_delays_increase "$WORK/scan.out" "over two hosts"
 grep -q "the line goes on through $A_OUT (port 1 of slave 2; link up)" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "host A did not say where the line goes on"; }
 
-"$MASTER" op --rt-priority 70 --iface "$M_IF" --dc --cycle-us 1000 --cycles 3000 \
-  --reply-timeout-us 200000 >"$WORK/op.txt" 2>"$WORK/op.err"
-rc=$?
-cat "$WORK/op.txt" "$WORK/op.err"
-[ $rc -eq 0 ] || fail "vdrive-master op exited $rc"
-grep -Eq "^summary: 3000 cycles of 1000 us, working counter [0-9]+ expected, 0 wrong, 0 lost, 0 not all in Op" "$WORK/op.txt" \
-  || fail "op over two hosts: not 3000 cycles with zero wrong working counters"
+expect_clean_op "op over two hosts"
 
 # Host B unplugged: the line ends at host A's last slave; plugged in again: three.
 ip -n "$NS_B" link set "$B_IN" down

@@ -10,19 +10,10 @@
 #include <fstream>
 #include <optional>
 
+#include "vdrive/runtime/line_status.hpp"
+
 namespace vdrive::cli {
 namespace {
-
-const char* state_name(int al) {
-  switch (al & 0x0F) {
-    case 1: return "Init";
-    case 2: return "PreOp";
-    case 3: return "Boot";
-    case 4: return "SafeOp";
-    case 8: return "Op";
-    default: return "?";
-  }
-}
 
 // One CSV line into cells; a cell in double quotes may hold commas and "" for a quote.
 std::vector<std::string> cells_of(const std::string& line) {
@@ -61,7 +52,7 @@ std::vector<PlotMarker> trace_markers(const std::vector<const SlaveSeries*>& ser
       const int before = static_cast<int>(s->al_state[i - 1]), now = static_cast<int>(s->al_state[i]);
       if ((before & 0x1F) != (now & 0x1F))
         out.push_back({s->time_s[i], s->slave, PlotMarker::Kind::al_state,
-                       fmt::format("S{} {}{}", s->slave, state_name(now), (now & 0x10) != 0 ? "+E" : "")});
+                       fmt::format("S{} {}{}", s->slave, runtime::al_state_name(static_cast<std::uint16_t>(now)), (now & 0x10) != 0 ? "+E" : "")});
     }
     for (std::size_t i = 1; i < s->error_code.size(); ++i) {
       const auto before = static_cast<unsigned>(s->error_code[i - 1]), now = static_cast<unsigned>(s->error_code[i]);
