@@ -39,7 +39,9 @@ for t in "${targets[@]}"; do
     echo "fuzz: $t: ${runs:-?} inputs in $seconds s, $cov, no finding"
   else
     echo "fuzz: $t: FINDING (log $log):"
-    grep -E "ERROR|SUMMARY|runtime error|Test unit written to" "$log" | head -8 | sed 's/^/  /'
+    # The cause (a sanitizer's report or an escaped exception) and the first frames in our code.
+    grep -E "ERROR|SUMMARY|runtime error|terminate called|what\(\)|Test unit written to" "$log" | head -8 | sed 's/^/  /'
+    grep -E "^ +#[0-9]+ .* in (vdrive|esc_model|plant|master|LLVMFuzzerTestOneInput)" "$log" | head -6 | sed 's/^/  /' || true
     failed+=("$t")
   fi
   rm -rf "$scratch"

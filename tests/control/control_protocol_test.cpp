@@ -103,6 +103,7 @@ TEST(ControlProtocol, SignalRepliesComeBackAsSent) {
 
 TEST(ControlProtocol, RefusalsNameWhatWasWrong) {
   EXPECT_THAT(refusal("{"), HasSubstr("not a JSON request"));
+  EXPECT_THAT(refusal(R"({"op":1E999})"), HasSubstr("not a JSON request"));  // too large for a double
   EXPECT_THAT(refusal("[1]"), HasSubstr("JSON object"));
   EXPECT_THAT(refusal(R"({"op":"explode"})"), HasSubstr("unknown op \"explode\""));
   EXPECT_THAT(refusal(R"({"fault":{}})"), HasSubstr("\"op\" is missing"));

@@ -138,6 +138,10 @@ TEST(WebApi, ObjectRefusalsNameWhatWasWrong) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
   EXPECT_NE(json::parse(r->body)["error"].get<std::string>().find("not JSON"), std::string::npos);
+  r = c.Put("/api/v1/slaves/1/objects/0x6060/0", R"({"value":1E999})", kJson);  // too large for a double
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(json::parse(r->body)["error"].get<std::string>().find("not JSON"), std::string::npos);
   r = c.Put("/api/v1/slaves/1/objects/0x6060/0", R"({"value":8})", "text/plain");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 415);

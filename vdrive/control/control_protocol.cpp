@@ -114,7 +114,7 @@ ControlRequest parse_request(std::string_view line) {
   json j;
   try {
     j = json::parse(line);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number too large for a double
     fail(fmt::format("not a JSON request: {}", e.what()));
   }
   if (!j.is_object()) fail("a request is a JSON object with an \"op\"");

@@ -36,7 +36,7 @@ ApiResult loop_busy() { return api_error(503, "the line's event loop did not ans
 std::variant<json, ApiResult> body_of(const httplib::Request& req) {
   try {
     return json::parse(req.body);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number too large for a double
     return api_error(400, fmt::format("the body is not JSON: {}", e.what()));
   }
 }
