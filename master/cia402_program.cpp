@@ -41,8 +41,10 @@ void SineProgram::preop(Master& master) {
   results_.assign(master.slaves().size(), DriveResult{});
   for (std::size_t i = 0; i < master.slaves().size(); ++i) {
     DriveResult& r = results_[i];
-    r.station = master.slaves()[i].station;
     const Slave& s = master.slaves()[i];
+    r.position = s.position;
+    r.station = s.station;
+    r.name = s.info.name;
     if (!s.info.has_mailbox() || !(s.info.mailbox_protocols & mailbox_protocol::kCoE)) {
       r.note = "no CoE";
       continue;
@@ -205,9 +207,9 @@ std::string verdict(const DriveResult& r) {
 }
 
 std::string describe(const DriveResult& r) {
-  return fmt::format("drive 0x{:04X}: {}, amplitude {:.0f}, max following error {} (window 6065h = {}; position "
+  return fmt::format("{}: {}, amplitude {:.0f}, max following error {} (window 6065h = {}; position "
                      "units of 6064h) over {} cycles, statusword 0x{:04X}, 603Fh 0x{:04X}{}{}",
-                     r.station, verdict(r), r.amplitude, r.max_following_error, r.following_window, r.samples,
+                     ecat::slave_label(r.position, r.station, r.name), verdict(r), r.amplitude, r.max_following_error, r.following_window, r.samples,
                      r.statusword, r.error_code, r.note.empty() ? "" : ": ", r.note);
 }
 

@@ -31,7 +31,9 @@ struct SineProgramOptions {
 };
 
 struct DriveResult {
+  std::uint16_t position = 0;           // 0-based, as Slave::position
   std::uint16_t station = 0;
+  std::string name;                     // the SII's device name
   bool enabled = false;                 // reached Operation enabled
   bool faulted = false;                 // saw the fault bit after enabling
   std::uint16_t statusword = 0;         // 6041h when the sine ended (before the shutdown)
@@ -44,7 +46,7 @@ struct DriveResult {
   bool ok() const { return enabled && !faulted && samples > 0 && max_following_error <= following_window; }
 };
 
-// One line for a person: "drive 0x1001: ok, amplitude ..., max following error ... (window 6065h =
+// One line for a person: "slave 1 @0x1001 NAME: ok, amplitude ..., max following error ... (window 6065h =
 // ...; position units of 6064h) over N cycles, statusword 0x..., 603Fh 0x...[: note]"; a failed
 // drive says why: "FAILED (never reached Operation enabled)", "FAILED (faulted, 603Fh FF10h)",
 // "FAILED (no sine cycle measured)", "FAILED (following error E beyond the window W)".

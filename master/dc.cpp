@@ -24,7 +24,7 @@ std::array<std::uint8_t, 8> bytes64(std::uint64_t v) {
   return b;
 }
 void require(const Wkc& wkc, std::uint16_t expected, const char* what, std::size_t slave) {
-  if (!wkc || *wkc != expected) throw MasterError(fmt::format("slave {}: {} not taken", slave, what));
+  if (!wkc || *wkc != expected) throw MasterError(fmt::format("slave {}: {} not taken", slave + 1, what));
 }
 }  // namespace
 

@@ -28,7 +28,7 @@ bool is(const Wkc& wkc, std::uint16_t expected) { return wkc && *wkc == expected
 constexpr std::size_t kLine = SIZE_MAX;  // "the whole line", not one slave
 void require(const Wkc& wkc, std::uint16_t expected, std::string_view what, std::size_t slave = kLine) {
   if (wkc && *wkc == expected) return;
-  const std::string who = slave == kLine ? std::string(what) : fmt::format("slave {}: {}", slave, what);
+  const std::string who = slave == kLine ? std::string(what) : fmt::format("slave {}: {}", slave + 1, what);  // from 1, as people count
   if (!wkc) throw MasterError(fmt::format("{}: no reply from the line", who));
   throw MasterError(fmt::format("{}: working counter {} (expected {})", who, *wkc, expected));
 }
@@ -99,7 +99,7 @@ std::size_t Master::scan() {
             "APWR station address", i);
     const auto back = transport_.fprd_value<std::uint16_t>(s.station, reg::kStationAddress);
     if (!back || *back != s.station) {
-      throw MasterError(fmt::format("slave {}: station address 0x{:04X} does not read back", i, s.station));
+      throw MasterError(fmt::format("slave {}: station address 0x{:04X} does not read back", i + 1, s.station));
     }
     std::array<std::uint8_t, 10> esc{};
     require(transport_.fprd(s.station, reg::kType, esc), 1, "FPRD ESC information", i);
@@ -119,7 +119,7 @@ std::size_t Master::scan() {
       sii.take_to_ecat();
       s.info = parse_sii(sii.read_image());
     } catch (const SiiError& e) {
-      throw MasterError(fmt::format("slave {}: SII: {}", s.position, e.what()));
+      throw MasterError(fmt::format("slave {}: SII: {}", s.position + 1, e.what()));
     }
     s.mailbox_sm[0] = SmSetting{s.info.mailbox_rx_offset, s.info.mailbox_rx_size, reg::kSmControlMailboxWrite,
                                 s.info.mailbox_rx_size ? reg::kSmActivateEnable : std::uint8_t{0}};
@@ -252,7 +252,7 @@ bool Master::request_state(AlState target) {
 
 std::string describe(const Slave& s) {
   std::string text = fmt::format("{}  0x{:04X}  vendor=0x{:08X}  product=0x{:08X}  revision=0x{:08X}  {:<20}  {}",
-                                 s.position, s.station, s.info.vendor_id, s.info.product_code, s.info.revision,
+                                 s.position + 1, s.station, s.info.vendor_id, s.info.product_code, s.info.revision,
                                  s.info.name.empty() ? "(no name)" : s.info.name, to_string(s.state()));
   if (s.al.error) {
     text += fmt::format("  error 0x{:04X} ({})", s.al.status_code, al_status_code_text(s.al.status_code));
@@ -260,6 +260,14 @@ std::string describe(const Slave& s) {
     text += fmt::format("  last refused with 0x{:04X} ({})", s.refused_code, al_status_code_text(s.refused_code));
   }
   return text;
+}
+
+std::string label(const Slave& s) { return ecat::slave_label(s.position, s.station, s.info.name); }
+
+std::size_t find_slave(const Master& master, const ecat::SlaveRef& ref) {
+  std::vector<std::uint16_t> stations;
+  for (const Slave& s : master.slaves()) stations.push_back(s.station);
+  return ecat::slave_index(ref, stations);
 }
 
 }  // namespace vdrive::master

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/clock.hpp"
+#include "ethercat/slave_ref.hpp"
 #include "master/al_state.hpp"
 #include "master/coe.hpp"
 #include "master/mailbox.hpp"
@@ -137,8 +138,15 @@ private:
   std::vector<std::unique_ptr<SdoClient>> sdos_;
 };
 
-// One line for people: position, station address, identity, name, AL state and, after a refused
-// state change, the AL status code with its meaning.
+// One line for people: position (from 1), station address, identity, name, AL state and, after a
+// refused state change, the AL status code with its meaning.
 std::string describe(const Slave& slave);
+
+// "slave 2 @0x1002 NAME" (ethercat/slave_ref.hpp): how every vdrive-master message names a slave.
+std::string label(const Slave& slave);
+
+// The index into master.slaves() of the slave `ref` names (position from 1, or station address);
+// std::invalid_argument says which slaves there are.
+std::size_t find_slave(const Master& master, const ecat::SlaveRef& ref);
 
 }  // namespace vdrive::master

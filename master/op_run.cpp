@@ -33,9 +33,9 @@ void write_dc_sync_parameters(Master& master, std::size_t i, Nanos cycle, std::v
       sdo.download_value<std::uint16_t>(object, 1, kSyncTypeDcSync0);
       if (object == kSmOutputParameter) sdo.download_value<std::uint32_t>(object, 2, static_cast<std::uint32_t>(cycle));
     } catch (const SdoAbort& e) {
-      notes.push_back(fmt::format("slave {}: {:04X}h:{:02X} not written ({})", i, object, e.subindex(), e.what()));
+      notes.push_back(fmt::format("slave {}: {:04X}h:{:02X} not written ({})", i + 1, object, e.subindex(), e.what()));
     } catch (const std::exception& e) {
-      notes.push_back(fmt::format("slave {}: {:04X}h not written ({})", i, object, e.what()));
+      notes.push_back(fmt::format("slave {}: {:04X}h not written ({})", i + 1, object, e.what()));
     }
   }
 }
@@ -60,7 +60,7 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
     for (const auto& p : pd.outputs) pdos += fmt::format(" {:04X}h", p.pdo);
     pdos += " /";
     for (const auto& p : pd.inputs) pdos += fmt::format(" {:04X}h", p.pdo);
-    say(fmt::format("slave {}: {} output bytes at {}, {} input bytes at {}, PDOs{} (from {})", s.position, pd.output_bytes,
+    say(fmt::format("{}: {} output bytes at {}, {} input bytes at {}, PDOs{} (from {})", label(s), pd.output_bytes,
                     pd.output_logical, pd.input_bytes, pd.input_logical, pdos, pd.from_coe ? "CoE" : "SII"));
   }
   say(fmt::format("process image: {} output bytes, {} input bytes, expected LRW working counter {}",

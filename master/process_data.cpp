@@ -107,7 +107,7 @@ void write_sm(Transport& t, const Slave& s, std::uint8_t n, std::uint16_t start,
   const Wkc off = t.fpwr_value<std::uint8_t>(s.station, static_cast<std::uint16_t>(base + reg::kSmActivateOffset), 0);
   const Wkc on = t.fpwr(s.station, base, regs);
   if (!off || *off != 1 || !on || *on != 1) {
-    throw MasterError(fmt::format("slave {}: FPWR SM{} not taken", s.position, n));
+    throw MasterError(fmt::format("slave {}: FPWR SM{} not taken", s.position + 1, n));
   }
 }
 
@@ -125,7 +125,7 @@ void write_fmmu(Transport& t, const Slave& s, std::uint8_t n, std::uint32_t logi
   f[11] = type;
   f[12] = length ? 1 : 0;  // activate
   const Wkc wkc = t.fpwr(s.station, static_cast<std::uint16_t>(reg::kFmmu0 + n * reg::kFmmuSize), f);
-  if (!wkc || *wkc != 1) throw MasterError(fmt::format("slave {}: FPWR FMMU{} not taken", s.position, n));
+  if (!wkc || *wkc != 1) throw MasterError(fmt::format("slave {}: FPWR FMMU{} not taken", s.position + 1, n));
 }
 }  // namespace
 
@@ -141,7 +141,7 @@ ProcessImageLayout configure_process_data(Master& master, std::vector<std::strin
         read_pdo_configuration(master.sdo(i), s.process_data);
         done = true;
       } catch (const std::exception& e) {
-        if (notes) notes->push_back(fmt::format("slave {}: PDOs from the SII ({})", i, e.what()));
+        if (notes) notes->push_back(fmt::format("slave {}: PDOs from the SII ({})", i + 1, e.what()));
       }
     }
     // As SOEM does: a CoE slave that assigns nothing to SM2 and SM3 is mapped from its SII.

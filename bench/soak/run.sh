@@ -88,7 +88,7 @@ stopped=$(grep -o "stopped: .*" "$OUT/vdrive.log" | tail -n 1)
   echo "end: $(date -u '+%Y-%m-%d %H:%M:%S UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "master: exit $master_rc; $summary"
   echo "vdrive: $stopped"
-  grep -E "^drive 0x|worst lateness" "$OUT/master.txt"
+  grep -E "^slave [0-9]+ @0x|worst lateness" "$OUT/master.txt"
   echo "rss: baseline ${baseline:-none} KiB (${BASELINE_S} s after Op), largest after it ${max_after} KiB, at the end ${end_rss:-?} KiB, slack ${RSS_SLACK_KIB} KiB, $(($(wc -l <"$OUT/rss.csv") - 1)) samples"
 } >>"$OUT/result.txt"
 cat "$OUT/result.txt"

@@ -6,37 +6,36 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include "master/foe.hpp"
 #include "master/master.hpp"
+#include "master/tool/slave_option.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 
 namespace vdrive::master::tool {
 
 namespace {
-void add_common(CLI::App* cmd, std::string& iface, std::size_t& slave, std::uint32_t& password, std::string& state) {
+void add_common(CLI::App* cmd, std::string& iface, std::string& slave, std::uint32_t& password, std::string& state) {
   cmd->add_option("--iface,-i", iface, "Network interface the line is connected to")->required();
-  cmd->add_option("--slave", slave, "Slave position as scan prints it (0 = first)")->required();
+  add_slave_option(cmd, slave);
   cmd->add_option("--password", password, "FoE password (default 0: none)");
   cmd->add_option("--state", state, "State for the transfer: boot or preop")
       ->check(CLI::IsMember({"boot", "preop"}, CLI::ignore_case));
 }
 
-// Scans, checks the slave number and takes the slave to `state`. False (with a line on stderr)
-// when the slave does not reach it: exit status 1.
-bool open(Master& master, std::size_t slave, const std::string& state) {
+// Scans, finds the slave --slave names and takes it to `state`: its index, or nothing (with a line
+// on stderr) when the slave does not reach it: exit status 1.
+std::optional<std::size_t> open(Master& master, const std::string& slave_text, const std::string& state) {
   if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on the interface");
-  if (slave >= master.slaves().size()) {
-    throw std::invalid_argument(fmt::format("--slave {}: the line has {} slaves (0..{})", slave, master.slaves().size(),
-                                            master.slaves().size() - 1));
-  }
+  const std::size_t slave = resolve_slave(master, slave_text);
   const AlState target = state == "boot" ? AlState::Boot : AlState::PreOp;
-  if (master.request_state(slave, target)) return true;
-  std::fprintf(stderr, "vdrive-master: slave did not reach %s: %s\n", std::string(to_string(target)).c_str(),
-               describe(master.slaves()[slave]).c_str());
-  return false;
+  if (master.request_state(slave, target)) return slave;
+  std::fprintf(stderr, "vdrive-master: %s did not reach %s: %s\n", label(master.slaves()[slave]).c_str(),
+               std::string(to_string(target)).c_str(), describe(master.slaves()[slave]).c_str());
+  return std::nullopt;
 }
 }  // namespace
 
@@ -72,15 +71,17 @@ int FoeCommand::run_write() {
   const std::string name = name_.empty() ? std::filesystem::path(file_).filename().string() : name_;
   vdrive::link::RawSocketLink link(iface_);
   Master master(link);
-  if (!open(master, slave_, state_.empty() ? "boot" : state_)) return 1;
-  FoeClient foe(master, slave_);
+  const std::optional<std::size_t> slave = open(master, slave_, state_.empty() ? "boot" : state_);
+  if (!slave) return 1;
+  FoeClient foe(master, *slave);
   foe.write(name, data, password_);
   std::printf("%s: %zu bytes written as \"%s\" in %zu packets (%llu sent again, %llu busy)\n",
-              describe(master.slaves()[slave_]).c_str(), data.size(), name.c_str(), data.size() / foe.max_data() + 1,
+              describe(master.slaves()[*slave]).c_str(), data.size(), name.c_str(), data.size() / foe.max_data() + 1,
               static_cast<unsigned long long>(foe.resent_packets()), static_cast<unsigned long long>(foe.busy_replies()));
   // Boot -> Init restarts the drive into what it was given.
-  if (!master.request_state(slave_, AlState::Init)) {
-    std::fprintf(stderr, "vdrive-master: slave did not return to Init: %s\n", describe(master.slaves()[slave_]).c_str());
+  if (!master.request_state(*slave, AlState::Init)) {
+    std::fprintf(stderr, "vdrive-master: %s did not return to Init: %s\n", label(master.slaves()[*slave]).c_str(),
+                 describe(master.slaves()[*slave]).c_str());
     return 1;
   }
   return 0;
@@ -89,8 +90,9 @@ int FoeCommand::run_write() {
 int FoeCommand::run_read() {
   vdrive::link::RawSocketLink link(iface_);
   Master master(link);
-  if (!open(master, slave_, state_.empty() ? "preop" : state_)) return 1;
-  FoeClient foe(master, slave_);
+  const std::optional<std::size_t> slave = open(master, slave_, state_.empty() ? "preop" : state_);
+  if (!slave) return 1;
+  FoeClient foe(master, *slave);
   const std::vector<std::uint8_t> data = foe.read(name_, password_);
   std::ofstream out(file_, std::ios::binary);
   out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));

@@ -29,7 +29,7 @@ private:
   CLI::App* write_ = nullptr;
   CLI::App* read_ = nullptr;
   std::string iface_, name_, file_, state_;
-  std::size_t slave_ = 0;
+  std::string slave_;
   std::uint32_t password_ = 0;
 };
 

@@ -15,7 +15,7 @@
 // (60F4h) is printed against its window 6065h and exit status 1 reports a drive that faulted,
 // never got enabled or left the window.
 //
-// --slave N is the position printed by scan (0 = first slave). Exit status, as vdrive's: 0
+// --slave is the position scan prints (1 = first slave) or the station address (0x1001). Exit status, as vdrive's: 0
 // success; 1 the line did not do what was asked (no reply, no slaves, a mailbox/SDO failure — an
 // SDO abort prints its code and text —, a state not reached, wrong working counters, a drive that
 // faulted); 2 a bad command line; 3 no such interface, or it is down; 4 not permitted. Errors are
@@ -39,6 +39,7 @@
 #include "master/master.hpp"
 #include "master/op_run.hpp"
 #include "master/tool/foe_command.hpp"
+#include "master/tool/slave_option.hpp"
 #include "master/value_text.hpp"
 #include "vdrive/link/raw_socket_link.hpp"
 
@@ -59,7 +60,7 @@ std::string hex32(std::uint32_t v) { return fmt::format("0x{:08X}", v); }
 
 nlohmann::json to_json(const Slave& s) {
   nlohmann::json j;
-  j["position"] = s.position;
+  j["position"] = s.position + 1;  // from 1, as scan's lines and every vdrive command count
   j["station"] = fmt::format("0x{:04X}", s.station);
   j["vendor_id"] = hex32(s.info.vendor_id);
   j["product_code"] = hex32(s.info.product_code);
@@ -74,7 +75,7 @@ nlohmann::json to_json(const Slave& s) {
   j["state"] = std::string(vdrive::master::to_string(s.state()));
   j["al_error"] = s.al.error;
   j["al_status_code"] = fmt::format("0x{:04X}", s.al.status_code);
-  j["parent"] = s.parent;
+  j["parent"] = s.position == 0 ? 0 : s.parent + 1;  // 0: the master
   j["parent_port"] = s.parent_port;
   j["delay_ns"] = s.dc_delay;
   return j;
@@ -111,8 +112,8 @@ int run_scan(const std::string& iface, const std::optional<AlState>& target, boo
     if (dc) {
       std::puts("topology (from the receive times):");
       for (const Slave& s : master.slaves()) {
-        if (s.position == 0) std::printf("  %u <- master\n", s.position);
-        else std::printf("  %u <- %u port %d, %lld ns\n", s.position, s.parent, s.parent_port, static_cast<long long>(s.dc_delay));
+        if (s.position == 0) std::printf("  1 <- master\n");
+        else std::printf("  %u <- %u port %d, %lld ns\n", s.position + 1u, s.parent + 1u, s.parent_port, static_cast<long long>(s.dc_delay));
       }
     }
   }
@@ -125,7 +126,7 @@ int run_scan(const std::string& iface, const std::optional<AlState>& target, boo
 }
 
 struct SdoArgs {
-  std::size_t slave = 0;
+  std::string slave;
   std::string index_text;
   unsigned sub = 0;
   std::string type = "hex";
@@ -145,17 +146,15 @@ std::uint16_t parse_index(const std::string& text) {
   return static_cast<std::uint16_t>(v);
 }
 
-// Scans and takes the line to Pre-Op (the mailbox runs from there), then checks the slave.
-Master& open_preop(Master& master, std::size_t slave) {
+// Scans, finds the slave --slave names and takes it to Pre-Op (the mailbox runs from there).
+std::size_t open_preop(Master& master, const std::string& slave_text) {
   if (master.scan() == 0) throw std::runtime_error("no EtherCAT slaves on the interface");
-  if (slave >= master.slaves().size()) {
-    throw std::invalid_argument(fmt::format("--slave {}: the line has {} slaves (0..{})", slave, master.slaves().size(),
-                                            master.slaves().size() - 1));
-  }
+  const std::size_t slave = vdrive::master::tool::resolve_slave(master, slave_text);
   if (!master.request_state(slave, AlState::PreOp)) {
-    throw std::runtime_error("slave did not reach Pre-Op: " + vdrive::master::describe(master.slaves()[slave]));
+    throw std::runtime_error(vdrive::master::label(master.slaves()[slave]) +
+                             " did not reach Pre-Op: " + vdrive::master::describe(master.slaves()[slave]));
   }
-  return master;
+  return slave;
 }
 
 int run_sdo(const std::string& iface, const SdoArgs& a, bool write) {
@@ -165,8 +164,8 @@ int run_sdo(const std::string& iface, const SdoArgs& a, bool write) {
   if (write) bytes = vdrive::master::encode_value(a.type, a.value);  // before touching the line
   vdrive::link::RawSocketLink link(iface);
   Master master(link);
-  open_preop(master, a.slave);
-  auto& sdo = master.sdo(a.slave);
+  const std::size_t slave = open_preop(master, a.slave);
+  auto& sdo = master.sdo(slave);
   const auto sub = static_cast<std::uint8_t>(a.sub);
   if (write) {
     sdo.download(index, sub, bytes, a.complete);
@@ -178,10 +177,10 @@ int run_sdo(const std::string& iface, const SdoArgs& a, bool write) {
   return 0;
 }
 
-int run_od_list(const std::string& iface, std::size_t slave, bool names) {
+int run_od_list(const std::string& iface, const std::string& slave_text, bool names) {
   vdrive::link::RawSocketLink link(iface);
   Master master(link);
-  open_preop(master, slave);
+  const std::size_t slave = open_preop(master, slave_text);
   auto& sdo = master.sdo(slave);
   const auto list = sdo.od_list();
   std::printf("%zu objects\n", list.size());
@@ -278,7 +277,7 @@ int main(int argc, char** argv) {
   SdoArgs sdo_args;
   auto add_sdo_options = [&](CLI::App* cmd) {
     cmd->add_option("--iface,-i", iface, "Network interface the line is connected to")->required();
-    cmd->add_option("--slave", sdo_args.slave, "Slave position as scan prints it (0 = first)")->required();
+    vdrive::master::tool::add_slave_option(cmd, sdo_args.slave);
     cmd->add_option("--index", sdo_args.index_text, "Object index, e.g. 0x6040")->required();
     cmd->add_option("--sub", sdo_args.sub, "Subindex (default 0)");
     cmd->add_option("--type", sdo_args.type, "u8 u16 u32 u64 i8 i16 i32 i64 string hex (default hex)")
@@ -291,11 +290,11 @@ int main(int argc, char** argv) {
   add_sdo_options(sdo_write);
   sdo_write->add_option("VALUE", sdo_args.value, "The value, in the form --type says")->required();
 
-  std::size_t list_slave = 0;
+  std::string list_slave;
   bool names = false;
   CLI::App* od_list = app.add_subcommand("od-list", "List a slave's objects with SDO information");
   od_list->add_option("--iface,-i", iface, "Network interface the line is connected to")->required();
-  od_list->add_option("--slave", list_slave, "Slave position as scan prints it (0 = first)")->required();
+  vdrive::master::tool::add_slave_option(od_list, list_slave);
   od_list->add_flag("--names", names, "Also read every object's description (name, type)");
 
   vdrive::master::OpRunOptions op_options;
@@ -332,7 +331,7 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  vdrive-master scan --iface m2m                         # the slaves, their identities and delays\n"
       "  vdrive-master scan --iface m2m --state preop --json\n"
-      "  vdrive-master sdo-read --iface m2m --slave 0 --index 0x1018 --sub 1 --type u32\n"
+      "  vdrive-master sdo-read --iface m2m --slave 1 --index 0x1018 --sub 1 --type u32\n"
       "  vdrive-master op --iface m2m --dc --cycle-us 1000 --cycles 10000 --rt-priority 70\n"
       "  vdrive-master op --iface m2m --dc --sine --revolutions 0.5\n"
       "Exit status (as vdrive's): 0 done, 1 the line did not do it (no reply, state not reached, wrong working\n"

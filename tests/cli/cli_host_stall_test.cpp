@@ -36,7 +36,7 @@ TEST(CliHostStall, AStoppedProcessIsAHostStallAndAnAlarmAfterItSaysSo) {
   const test::ProcessResult injected =
       test::run_process(VDRIVE_BINARY, {"fault", "inject", "--control", socket, "alarm", "--slave", "1", "--code", "81.1"});
   ASSERT_EQ(injected.exit_code, 0) << injected.err;
-  EXPECT_TRUE(run.wait_for_stderr("slave 1 (a6b): alarm 81.1 Mailbox setting error protection (603Fh FF51h) after a host stall of ", 5s))
+  EXPECT_TRUE(run.wait_for_stderr("slave 1 a6b: alarm 81.1 Mailbox setting error protection (603Fh FF51h) after a host stall of ", 5s))
       << run.finish().err;
   EXPECT_TRUE(run.wait_for_stderr(", longest ", 5s)) << "the status line counts it\n" << run.finish().err;
 

@@ -323,7 +323,7 @@ TEST(CliStatusServe, AnAlarmIsLoggedByItsOwnNameWhenOthersShareIts603Fh) {
   const test::ProcessResult injected =
       test::run_process(VDRIVE_BINARY, {"fault", "inject", "--control", socket, "alarm", "--slave", "1", "--code", "81.1"});
   ASSERT_EQ(injected.exit_code, 0) << injected.err;
-  EXPECT_TRUE(run.wait_for_stderr("slave 1 (a6b): alarm 81.1 Mailbox setting error protection (603Fh FF51h)", 5s))
+  EXPECT_TRUE(run.wait_for_stderr("slave 1 a6b: alarm 81.1 Mailbox setting error protection (603Fh FF51h)", 5s))
       << run.finish().err;
   run.signal(SIGTERM);
   const test::ProcessResult r = run.finish();

@@ -150,6 +150,23 @@ TEST(Cli, UnknownProductIsABadArgument) {
   expect_one_error_line(r, "unknown product 'nosuchdrive'");
 }
 
+// --plant counts slaves as every command does, from 1; a station address is the master's to set
+// later, so it names no slave at start-up.
+TEST(Cli, PlantPositionsCountFromOne) {
+  auto r = vdrive({"run", "--iface", "lo", "--drive", "a6b", "--plant", "0:axis.yaml"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--plant '0:axis.yaml': slave 0: positions count from 1");
+  r = vdrive({"run", "--iface", "lo", "--drive", "a6b", "--plant", "2:axis.yaml"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "--plant '2:axis.yaml': there are 1 drives (positions 1-1)");
+  r = vdrive({"run", "--iface", "lo", "--drive", "a6b", "--plant", "0x1001:axis.yaml"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "a station address is set by the master when it runs; give the slave's position (1 = first)");
+  r = vdrive({"run", "--iface", "lo", "--drive", "a6b", "--plant", "1:/nonexistent-vdrive-plant.yaml"});
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(r, "/nonexistent-vdrive-plant.yaml");  // slave 1 taken: its file is read
+}
+
 TEST(Cli, AProductMissingFromTheProfileDirIsABadArgument) {
   for (const char* command : {"od", "sii", "esi"}) {
     std::vector<std::string> args = {command, "--drive", "a6b", "--profile-dir", "/nonexistent-vdrive-profiles"};

@@ -57,6 +57,16 @@ TEST(ControlProtocol, PerKindFields) {
   EXPECT_EQ(parse_request(R"({"op":"inject","fault":{"kind":"link_down","slave":2}})").fault.port, 0) << "the cable into it";
 }
 
+// "slave": a position (number or text) or a station address as text, found when the fault starts.
+TEST(ControlProtocol, ASlaveIsAPositionOrAStationAddress) {
+  const ControlRequest by_address = parse_request(R"({"op":"inject","fault":{"kind":"overload","slave":"0x1002"}})");
+  EXPECT_EQ(by_address.fault.station, 0x1002);
+  EXPECT_EQ(by_address.fault.slave, 0) << "found by the injector";
+  EXPECT_EQ(parse_request(R"({"op":"inject","fault":{"kind":"overload","slave":"2"}})").fault.slave, 2);
+  EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"overload","slave":"0"}})"), HasSubstr("positions count from 1"));
+  EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"overload","slave":"second"}})"), HasSubstr("'second' names no slave"));
+}
+
 TEST(ControlProtocol, PortIsLinkDownsOnly) {
   EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"link_down","slave":1,"port":4}})"), HasSubstr("\"port\""));
   EXPECT_THAT(refusal(R"({"op":"inject","fault":{"kind":"jam","slave":1,"port":1}})"), HasSubstr("\"port\""));

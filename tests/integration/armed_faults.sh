@@ -31,16 +31,16 @@ out=$("$VDRIVE" fault list --control "$CONTROL") || fail "fault list failed: $ou
 echo "$out"
 echo "$out" | grep -q "encoder_error" || fail "the armed fault is not active"
 grep -q "armed_fault.yaml:5: armed fault 1 (encoder_error slave 1)" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "the armed fault is not logged with its line"; }
-out=$("$MASTER" sdo-read --iface "$M_IF" --slave 0 --index 0x603F --type u16) || fail "sdo-read 603Fh failed: $out"
+out=$("$MASTER" sdo-read --iface "$M_IF" --slave 1 --index 0x603F --type u16) || fail "sdo-read 603Fh failed: $out"
 echo "$out"
 code=$(echo "$out" | sed -n 's/.*(\([0-9]*\))$/\1/p')   # "603F:00 = 0xFF15 (65301)"
 [ -n "$code" ] || fail "sdo-read printed no value: $out"
 [ "$code" -ne 0 ] || fail "the A6B reports no alarm after its encoder failed"
 # vdrive run logs what happens on the line at info level: the alarm by the product's name, AL
 # state changes a master asks for.
-grep -q "slave 1 (a6b): alarm 21.0 Encoder communication disconnect error protection (603Fh FF15h)" "$WORK/vdrive.log" \
+grep -q "slave 1 @0x1001 a6b: alarm 21.0 Encoder communication disconnect error protection (603Fh FF15h)" "$WORK/vdrive.log" \
   || { cat "$WORK/vdrive.log"; fail "the alarm is not logged by name"; }
 "$MASTER" scan --iface "$M_IF" --state preop >/dev/null 2>&1 || fail "scan --state preop failed"
 sleep 0.4
-grep -q "slave 1 (a6b): Init -> PreOp" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "the AL state change is not logged"; }
+grep -q "slave 1 @0x1001 a6b: Init -> PreOp" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "the AL state change is not logged"; }
 echo "PASS"

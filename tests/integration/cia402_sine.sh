@@ -33,6 +33,6 @@ stalls=$(grep -E "host stall" "$WORK/vdrive.log")
 echo "vdrive: ${stalls:-no host stall line}"
 echo "$stalls" | grep -qE "host stalls: (none|[0-9]+, longest)" || fail "vdrive's summary does not count host stalls"
 [ $rc -eq 0 ] || fail "vdrive-master op --sine exited $rc ($(echo "$stalls" | tail -1))"
-ok=$(grep -Ec "^drive 0x[0-9A-F]{4}: ok, " "$WORK/op.txt")
+ok=$(grep -Ec "^slave [0-9]+ @0x[0-9A-F]{4} [^:]*: ok, " "$WORK/op.txt")
 [ "$ok" -eq 3 ] || fail "$ok of 3 drives followed the sine ($(echo "$stalls" | tail -1))"
 echo "PASS"

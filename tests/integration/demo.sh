@@ -20,7 +20,7 @@ cat "$OUT"
 [ "$(grep -cE '0x100[123] .*Pre-Op$' "$OUT")" -eq 3 ] || fail "three slaves in Pre-Op expected"
 grep -qE '^Op with DC at 1000 us: [0-9]+ cycles, working counter [0-9]+ expected, 0 wrong, 0 lost' "$OUT" \
   || fail "cycles in Op with zero wrong working counters expected"
-[ "$(grep -cE '^drive 0x100[123]: ok, ' "$OUT")" -eq 3 ] || fail "three drives following the sine expected"
+[ "$(grep -cE '^slave [123] @0x100[123] [^:]*: ok, ' "$OUT")" -eq 3 ] || fail "three drives following the sine expected"
 # The host's stalls are counted (docs/reliability.md "Host stalls"), and each is named.
 grep -qE '^host stalls: (none|[0-9]+, longest [0-9.]+ ms)$' "$OUT" || fail "no host stall count"
 if ! grep -q '^host stalls: none$' "$OUT"; then grep -qE '^host stall [0-9.]+ ms \(threshold' "$OUT" || fail "a host stall counted but not named"; fi

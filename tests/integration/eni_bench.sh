@@ -27,7 +27,7 @@ scan = json.load(open(sys.argv[1]))
 slaves = scan["slaves"]
 expected = ["0x044C2C52", "0x03F03052", "0x07D83052", "0x00000402", "0x613C0005"]
 assert [s["product_code"] for s in slaves] == expected, [s["product_code"] for s in slaves]
-assert [s["parent"] for s in slaves] == [0, 0, 1, 0, 3], [s["parent"] for s in slaves]
+assert [s["parent"] for s in slaves] == [0, 1, 2, 1, 4], [s["parent"] for s in slaves]
 assert all(s["state"] == "Pre-Op" and not s["al_error"] for s in slaves), slaves
 print("scan: the ENI's five slaves in its order, the tree as its PreviousPorts say, all in Pre-Op")
 PY

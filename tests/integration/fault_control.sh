@@ -5,7 +5,8 @@
 # master is in Op, `vdrive fault inject drop --probability 1 --duration 300ms` cuts the wire:
 # `vdrive fault list` must show the fault, the master must report lost frames / wrong working
 # counters, and the fault must be gone by itself after its duration. Then a fault without a
-# duration is injected, listed and cleared by id. Refusals: an unknown kind exits 2 naming the
+# duration is injected, listed and cleared by id, and one on --slave 0x1002 (the address the
+# master set) lands on slave 2. Refusals: an unknown kind exits 2 naming the
 # kind; no server exits 1 naming the socket path; a peer of another uid (nobody, via setpriv) is
 # denied with exit 4, first by the socket's 0600 mode and then, with the mode opened up, by the
 # server's SO_PEERCRED check.
@@ -77,6 +78,16 @@ out=$(fault clear "$id" 2>&1); rc=$?
 fault inject corrupt --probability 0.5 >/dev/null && fault inject reorder >/dev/null || fail "two wire faults"
 [ "$(fault clear --all)" = "2 fault(s) cleared" ] || fail "fault clear --all did not clear 2"
 "$MASTER" scan --iface "$M_IF" >/dev/null 2>&1 || fail "the line does not answer after clear --all"
+
+# A slave named by the station address the master set (scan: 0x1001-0x1003) is found by position.
+fault inject overload --slave 0x1002 >/dev/null || fail "overload on 0x1002"
+fault list | grep -q "overload slave 2" || fail "0x1002 is not slave 2: $(fault list)"
+[ "$(fault clear --all)" = "1 fault(s) cleared" ] || fail "fault clear --all did not clear the overload"
+out=$(fault inject overload --slave 0x1009 2>&1); rc=$?
+[ $rc -eq 2 ] && echo "$out" | grep -q "no slave has station address 0x1009 (the line has 0x1001, 0x1002, 0x1003)" \
+  || fail "overload on 0x1009: exit $rc, '$out'"
+out=$(fault inject overload --slave 0 2>&1); rc=$?
+[ $rc -eq 2 ] && echo "$out" | grep -q "positions count from 1" || fail "overload on slave 0: exit $rc, '$out'"
 
 # 3. Refusals.
 out=$(fault inject wobble 2>&1); rc=$?

@@ -56,7 +56,7 @@ wait_for_line
 
 version() {  # the drive's 100Ah, as the master reads it
   local out
-  out=$("$MASTER" sdo-read --iface "$M_IF" --slave 0 --index 0x100A --type string 2>&1) \
+  out=$("$MASTER" sdo-read --iface "$M_IF" --slave 1 --index 0x100A --type string 2>&1) \
     || fail "sdo-read 100Ah: $out"
   echo "${out#100A:00 = }"
 }
@@ -67,7 +67,7 @@ expect_version() {
 }
 foe_write() {  # foe_write <expected exit> FILE [options]: output in $out
   local want=$1; shift
-  out=$("$MASTER" foe-write --iface "$M_IF" --slave 0 "$@" 2>&1); rc=$?
+  out=$("$MASTER" foe-write --iface "$M_IF" --slave 1 "$@" 2>&1); rc=$?
   echo "\$ vdrive-master foe-write ... $(basename "${*: -1}")"; echo "$out"
   [ "$rc" -eq "$want" ] || fail "foe-write exited $rc (expected $want)"
 }

@@ -31,7 +31,7 @@ expected = ["0x044C2C52", "0x03F03052", "0x07D83052", "0x0C1E3052", "0x10063052"
 assert [s["product_code"] for s in slaves] == expected, [s["product_code"] for s in slaves]
 # The terminals and the junction in a line on the coupler's E-bus (port 3); the two A6B behind
 # the junction's port 3, the DS5C1 and the servo behind its port 2; 500 ns per hop and direction.
-assert [s["parent"] for s in slaves] == [0, 0, 1, 2, 3, 4, 5, 6, 5, 8], [s["parent"] for s in slaves]
+assert [s["parent"] for s in slaves] == [0, 1, 2, 3, 4, 5, 6, 7, 6, 9], [s["parent"] for s in slaves]
 assert [s["parent_port"] for s in slaves] == [0, 3, 1, 1, 1, 1, 3, 1, 2, 1], [s["parent_port"] for s in slaves]
 assert [s["delay_ns"] for s in slaves] == [0, 500, 1000, 1500, 2000, 2500, 3000, 3500, 5000, 5500], \
     [s["delay_ns"] for s in slaves]

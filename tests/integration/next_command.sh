@@ -31,7 +31,7 @@ read_u16() {
 # Every drive as the next command finds it; $1 says after what.
 expect_no_fault() {
   local slave code status
-  for slave in 0 1 2; do
+  for slave in 1 2 3; do
     code=$(read_u16 "$slave" 0x603F)
     status=$(read_u16 "$slave" 0x6041)
     [ -n "$code" ] && [ -n "$status" ] || fail "$1: slave $slave: no value read"
@@ -43,7 +43,7 @@ expect_no_fault() {
   fi
 }
 
-out=$("$MASTER" sdo-read --iface "$M_IF" --slave 0 --index 0x1018 --sub 1 --type u32) || fail "first sdo-read: $out"
+out=$("$MASTER" sdo-read --iface "$M_IF" --slave 1 --index 0x1018 --sub 1 --type u32) || fail "first sdo-read: $out"
 echo "$out"
 echo "$out" | grep -q "^1018:01 = 0x0000066F" || fail "1018h:01 of the A6B: $out"
 expect_no_fault "after sdo-read (the line left in Pre-Op)"

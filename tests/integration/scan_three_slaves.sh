@@ -33,6 +33,9 @@ expected = [("0x1001", "0x0000066F", "0x60380005"),
             ("0x1003", "0x00000973", "0x00004A39")]
 slaves = scan["slaves"]
 assert len(slaves) == 3, f"{len(slaves)} slaves"
+# Positions from 1, as every command takes them; parent 0 is the master.
+assert [s["position"] for s in slaves] == [1, 2, 3], slaves
+assert [s["parent"] for s in slaves] == [0, 1, 2], slaves
 for s, (station, vendor, product) in zip(slaves, expected):
     assert s["station"] == station, s
     assert s["vendor_id"] == vendor, s

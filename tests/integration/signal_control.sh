@@ -40,7 +40,7 @@ done
 echo "ok: x.home -> wire -> di 0x6000:1"
 
 # The A6B is the fourth slave (position 3 for the master); 60FDh bit 2 is HOME.
-out=$("$MASTER" sdo-read --iface "$M_IF" --slave 3 --index 0x60FD --type u32) || fail "sdo-read 60FDh failed: $out"
+out=$("$MASTER" sdo-read --iface "$M_IF" --slave 4 --index 0x60FD --type u32) || fail "sdo-read 60FDh failed: $out"
 echo "$out"
 v=$(echo "$out" | sed -n 's/.*(\([0-9]*\))$/\1/p')   # "60FD:00 = 0x00000004 (4)"
 [ -n "$v" ] || fail "sdo-read printed no value: $out"

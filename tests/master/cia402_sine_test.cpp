@@ -83,10 +83,12 @@ namespace {
 // A drive's line says why it failed, first cause first, with the units of its numbers.
 TEST(DriveResultLine, AFailedDriveSaysWhy) {
   DriveResult r;
+  r.position = 1;
   r.station = 0x1002;
+  r.name = "DS5C1";
   r.following_window = 100000;
   r.amplitude = 131072;
-  EXPECT_EQ(describe(r).rfind("drive 0x1002: FAILED (never reached Operation enabled), amplitude 131072, ", 0), 0u)
+  EXPECT_EQ(describe(r).rfind("slave 2 @0x1002 DS5C1: FAILED (never reached Operation enabled), amplitude 131072, ", 0), 0u)
       << describe(r);
   r.enabled = true;
   r.faulted = true;
@@ -99,7 +101,7 @@ TEST(DriveResultLine, AFailedDriveSaysWhy) {
   EXPECT_NE(describe(r).find(": FAILED (following error 100001 beyond the window 100000), "), std::string::npos)
       << describe(r);
   r.max_following_error = 5123;
-  EXPECT_EQ(describe(r), "drive 0x1002: ok, amplitude 131072, max following error 5123 (window 6065h = 100000; "
+  EXPECT_EQ(describe(r), "slave 2 @0x1002 DS5C1: ok, amplitude 131072, max following error 5123 (window 6065h = 100000; "
                          "position units of 6064h) over 2000 cycles, statusword 0x0000, 603Fh 0xFF10");
 }
 

@@ -13,7 +13,8 @@ namespace vdrive::cli {
 
 struct FaultInjectOptions {
   std::string kind;
-  std::optional<int> slave, port, count;
+  std::optional<std::string> slave;  // a position (1 = first) or a station address, "0x1002"
+  std::optional<int> port, count;
   std::optional<std::string> duration, direction, delay, abort_code, code;
   std::optional<double> probability, position, load_scale, force;
 };

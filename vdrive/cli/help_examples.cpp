@@ -16,7 +16,7 @@ const std::pair<const char*, const char*> kExamples[] = {
     {"run",
      "Examples:\n"
      "  vdrive run --iface eth1 --drive a6b --drive ds5c1 --drive ds1000a\n"
-     "  vdrive run --tap vdrive0 -d a6b --plant 0:scenarios/plants/a6b_brake_axis.yaml --status\n"
+     "  vdrive run --tap vdrive0 -d a6b --plant 1:scenarios/plants/a6b_brake_axis.yaml --status\n"
      "  vdrive --config site.toml run --iface eth1 --log-level debug\n"},
     {"demo",
      "Examples:\n"

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "ethercat/registers.hpp"
+#include "ethercat/slave_ref.hpp"
 #include "master/al_state.hpp"
 #include "vdrive/network/network.hpp"
 
@@ -36,7 +37,7 @@ std::vector<std::string> line_changes(const runtime::StatusSample& before, const
     const runtime::SlaveStatus& b = before.slaves[i];
     const runtime::SlaveStatus& a = now.slaves[i];
     const profile::ProductProfile& p = network.profile(i);
-    const std::string who = fmt::format("slave {} ({})", i + 1, p.id);
+    const std::string who = ecat::slave_label(i, a.station, p.id);
     const bool was_error = (b.al_status & ecat::reg::kAlErrorFlag) != 0, is_error = (a.al_status & ecat::reg::kAlErrorFlag) != 0;
     if ((a.al_status & 0x0F) != (b.al_status & 0x0F))
       lines.push_back(fmt::format("{}: {} -> {}", who, runtime::al_state_name(b.al_status), runtime::al_state_name(a.al_status)));

@@ -2,10 +2,10 @@
 // What changed on a served line between two status samples, as the lines `vdrive run` logs at
 // info level (docs/cli.md "What run logs"): AL state changes, AL errors with the ETG text of their
 // code, and drive alarms (603Fh) by the product's own name:
-//   slave 2 (ds5c1): Pre-Op -> Safe-Op
-//   slave 2 (ds5c1): AL error 0x001D Invalid output configuration, in Pre-Op
-//   slave 1 (a6b): alarm Err16.0 Overload (603Fh FF10h)
-//   slave 1 (a6b): alarm cleared
+//   slave 2 @0x1002 ds5c1: Pre-Op -> Safe-Op     (the address once the master has set it)
+//   slave 2 @0x1002 ds5c1: AL error 0x001D Invalid output configuration, in Pre-Op
+//   slave 1 @0x1001 a6b: alarm Err16.0 Overload (603Fh FF10h)
+//   slave 1 @0x1001 a6b: alarm cleared
 //   onward link down: the line ends at the last slave here      (`run --next-iface`)
 // An AL error or alarm seen within runtime::kStallAftermath of a host stall ends "after a host
 // stall of 12.3 ms". host_stall_lines() are the stalls themselves, logged at warning level.

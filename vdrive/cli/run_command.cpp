@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "ethercat/slave_ref.hpp"
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/run_status.hpp"
 #include "vdrive/cli/telemetry_command.hpp"
@@ -71,7 +72,7 @@ struct RunOptions {
   int cpu = -1;           // pin the serving thread; -1: no pinning
   long slice_us = 100;    // the serving thread's time slice (runtime::set_time_slice); 0: the kernel's
   bool slice_given = false;  // --slice-us on the command line or in the config: failing to set it is an error
-  std::vector<std::string> plants;  // "N:FILE": slave N (cable order, from 0) moves the plant in FILE
+  std::vector<std::string> plants;  // "N:FILE": slave N (cable order, 1 = first) moves the plant in FILE
   std::string control;              // runtime control socket; empty: default_control_path()
   std::uint64_t fault_seed = 1;     // wire impairment's generator
   bool no_control = false;
@@ -110,21 +111,34 @@ std::unique_ptr<control::ControlServer> open_control(const RunOptions& o, contro
   }
 }
 
+// N of --plant N:FILE as an index (0-based): the position from 1, as every command counts. A
+// station address is the master's to set at run time, so it names no slave here.
+std::size_t plant_slave(const std::string& arg, std::size_t slaves) {
+  const std::size_t colon = arg.find(':');
+  if (colon == std::string::npos || colon == 0)
+    throw CliError(kExitBadArguments, fmt::format("--plant '{}': expected N:FILE (N = the slave's position, 1 = first)", arg));
+  ecat::SlaveRef ref;
+  try {
+    ref = ecat::parse_slave_ref(arg.substr(0, colon));
+  } catch (const std::invalid_argument& e) {
+    throw CliError(kExitBadArguments, fmt::format("--plant '{}': {}", arg, e.what()));
+  }
+  if (ref.is_address())
+    throw CliError(kExitBadArguments, fmt::format("--plant '{}': a station address is set by the master when it runs; "
+                                                  "give the slave's position (1 = first)", arg));
+  if (ref.value > slaves)
+    throw CliError(kExitBadArguments, fmt::format("--plant '{}': there are {} drives (positions 1-{})", arg, slaves, slaves));
+  return ref.value - 1u;
+}
+
 // --plant N:FILE -> per-slave plant descriptions. Errors name the option, the value and, for a bad
 // file, the file, line and field (plant_yaml.hpp).
 std::vector<std::optional<plant::PlantDescription>> load_plants(const RunOptions& o) {
   std::vector<std::optional<plant::PlantDescription>> plants(o.drives.size());
   for (const std::string& arg : o.plants) {
     const std::size_t colon = arg.find(':');
-    std::size_t slave = 0;
-    const bool numeric = colon != std::string::npos && colon > 0 &&
-                         std::all_of(arg.begin(), arg.begin() + static_cast<long>(colon), [](char c) { return c >= '0' && c <= '9'; });
-    if (!numeric) throw CliError(kExitBadArguments, fmt::format("--plant '{}': expected N:FILE (N = slave position from 0)", arg));
-    slave = std::stoul(arg.substr(0, colon));
-    if (slave >= o.drives.size())
-      throw CliError(kExitBadArguments, fmt::format("--plant '{}': there are {} drives (positions 0-{})", arg, o.drives.size(),
-                                                    o.drives.empty() ? 0 : o.drives.size() - 1));
-    if (plants[slave]) throw CliError(kExitBadArguments, fmt::format("--plant '{}': slave {} already has a plant", arg, slave));
+    const std::size_t slave = plant_slave(arg, o.drives.size());
+    if (plants[slave]) throw CliError(kExitBadArguments, fmt::format("--plant '{}': slave {} already has a plant", arg, slave + 1));
     try {
       plant::PlantDescription d = plant::load_plant_file(arg.substr(colon + 1), [&](std::string_view id) -> std::optional<plant::MotorCatalogue> {
         try {
@@ -245,23 +259,21 @@ void apply_network_file(const RunOptions& o, network::NetworkOptions& options) {
     const machine::NetworkSlave& s = f.slaves[i];
     if (s.plant_file.empty()) continue;
     RunOptions one = o;
-    one.plants = {fmt::format("{}:{}", i, s.plant_file)};
+    one.plants = {fmt::format("{}:{}", i + 1, s.plant_file)};
     options.plants[i] = load_plants(one)[i];
   }
 }
 
 void run(RunOptions o);
 
-// --plant N:FILE of the whole line, for the part holding slave N, renumbered within it (the
-// values were checked by load_plants).
+// --plant N:FILE of the whole line, for the part holding slave N, renumbered within it.
 std::vector<std::string> plants_of_part(const std::vector<std::string>& plants, const std::vector<network::LinePart>& parts,
-                                        std::size_t part) {
+                                        std::size_t part, std::size_t slaves) {
   std::vector<std::string> out;
   for (const std::string& arg : plants) {
-    const std::size_t colon = arg.find(':');
-    const std::size_t slave = std::stoul(arg.substr(0, colon));
+    const std::size_t slave = plant_slave(arg, slaves);
     if (network::part_of(parts, slave) != part) continue;
-    out.push_back(fmt::format("{}:{}", slave - parts[part].first, arg.substr(colon + 1)));
+    out.push_back(fmt::format("{}:{}", slave - parts[part].first + 1, arg.substr(arg.find(':') + 1)));
   }
   return out;
 }
@@ -290,7 +302,7 @@ void run_in_parts(RunOptions o) {
     if (!onward.empty()) a.insert(a.end(), {"--next-iface", onward});
     a.push_back("--drive");
     for (std::size_t i = parts[k].first; i < parts[k].first + parts[k].count; ++i) a.push_back(o.drives[i]);
-    for (const std::string& plant : plants_of_part(o.plants, parts, k)) a.insert(a.end(), {"--plant", plant});
+    for (const std::string& plant : plants_of_part(o.plants, parts, k, o.drives.size())) a.insert(a.end(), {"--plant", plant});
     a.insert(a.end(), {"--hop-delay", std::to_string(o.hop_delay), "--cpu", std::to_string(cpu_of(k)), "--fault-seed",
                        std::to_string(o.fault_seed), "--no-control", "--no-status", "--log-level", level});
     if (!o.profile_dir.empty()) a.insert(a.end(), {"--profile-dir", o.profile_dir});
@@ -307,7 +319,7 @@ void run_in_parts(RunOptions o) {
   RunOptions first = o;
   first.processes = 1;
   first.drives.assign(o.drives.begin(), o.drives.begin() + static_cast<long>(parts[0].count));
-  first.plants = plants_of_part(o.plants, parts, 0);
+  first.plants = plants_of_part(o.plants, parts, 0, o.drives.size());
   first.next_iface = others.first_onward();
   first.cpu = cpu_of(0);
   spdlog::info("the line of {} slaves in {} processes: part 1 (slaves 1-{}) here on CPU {}", o.drives.size(),
@@ -352,6 +364,7 @@ void run(RunOptions o) {
   if (o.cpu >= 0 && !runtime::cpu_is_allowed(o.cpu))
     throw CliError(kExitBadArguments, fmt::format("--cpu {}: no such CPU, or not one this process may use", o.cpu));
   // Logs go to stderr at --log-level (set up by main for every command, log_level.hpp).
+  std::vector<std::optional<plant::PlantDescription>> plants = load_plants(o);  // a bad one before the link opens
 
   std::unique_ptr<link::Link> link;
   {
@@ -365,7 +378,7 @@ void run(RunOptions o) {
   try {
     network::NetworkOptions options{o.hop_delay, o.profile_dir};
     options.foe_strict_firmware_check = o.foe_strict;
-    options.plants = load_plants(o);
+    options.plants = std::move(plants);
     if (!o.network_file.empty()) apply_network_file(o, options);
     network = std::make_unique<network::Network>(o.drives, clock, options);
   } catch (const std::invalid_argument& e) {
@@ -496,7 +509,7 @@ void add_run_command(CLI::App& app) {
   eni->excludes(drive);
   eni->excludes(network_file);
   cmd->add_option("--plant", o->plants,
-                  "N:FILE: slave N (cable order, from 0) moves the plant in FILE (docs/plant.md); repeat per slave")
+                  "N:FILE: slave N (cable order, 1 = first) moves the plant in FILE (docs/plant.md); repeat per slave")
       ->take_all();
   cmd->add_option("--hop-delay", o->hop_delay, "Delay per slave and direction in ns (default 500)")
       ->check(CLI::Range(Nanos{0}, Nanos{1'000'000'000}));

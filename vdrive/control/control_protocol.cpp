@@ -70,6 +70,10 @@ public:
     return vdrive::control::integer(at(f), f, min, max);
   }
   Nanos time(std::string_view f) override { return vdrive::control::time(at(f), f); }
+  std::optional<std::string> address_text(std::string_view f) override {
+    if (!j_.contains(f) || !j_.at(std::string(f)).is_string()) return std::nullopt;
+    return at(f).get<std::string>();
+  }
   [[noreturn]] void missing(std::string_view f, std::string_view why) override {
     fail(fmt::format("{} is missing: {}", field(f), why));
   }

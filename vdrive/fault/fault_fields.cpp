@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "ethercat/slave_ref.hpp"
+
 namespace vdrive::fault {
 
 std::string fault_kind_names() {
@@ -17,7 +19,8 @@ std::vector<FaultFieldInfo> fault_fields(FaultKind kind) {
   const FaultKindInfo& i = info(kind);
   std::vector<FaultFieldInfo> f;
   if (i.layer != Layer::wire || kind == K::link_down)
-    f.push_back({"slave", "integer", true, "", "", kind == K::link_down ? "the slave whose port's cable breaks (1 = first)" : "the slave it acts on (1 = first)"});
+    f.push_back({"slave", "integer", true, "", "", kind == K::link_down ? "the slave whose port's cable breaks (1 = first, or its station address 0x1001)"
+                                                             : "the slave it acts on (1 = first, or its station address 0x1001)"});
   if (kind == K::link_down) f.push_back({"port", "integer", false, "0", "", "0: the cable into the slave; 1-3: to the slaves behind it"});
   if (!i.one_shot) f.push_back({"duration", "time", false, "0", "", "how long it lasts (0: until cleared)"});
   switch (kind) {
@@ -60,7 +63,19 @@ FaultSpec read_fault(FaultFieldSource& src, int max_slave) {
   const FaultKindInfo& i = info(f.kind);
   if (i.layer != Layer::wire || f.kind == K::link_down) {
     if (!src.has("slave")) src.missing("slave", fmt::format("kind \"{}\" acts on one slave (1 = first)", kind));
-    f.slave = static_cast<int>(src.integer("slave", 1, max_slave));
+    if (const std::optional<std::string> address = src.address_text("slave")) {
+      try {
+        const ecat::SlaveRef ref = ecat::parse_slave_ref(*address);
+        if (!ref.is_address() && ref.value > max_slave)
+          src.out_of_range("slave", fmt::format("is out of range (1..{})", max_slave));
+        if (ref.is_address()) f.station = ref.value;
+        else f.slave = ref.value;
+      } catch (const std::invalid_argument& e) {
+        src.invalid("slave", e.what());
+      }
+    } else {
+      f.slave = static_cast<int>(src.integer("slave", 1, max_slave));
+    }
   }
   if (f.kind == K::link_down && src.has("port")) f.port = static_cast<int>(src.integer("port", 0, 3));
   if (!i.one_shot && src.has("duration")) f.duration = src.time("duration");

@@ -6,6 +6,7 @@
 // only; each format supplies a FaultFieldSource that reads one named field in its own syntax and
 // reports errors in its own form (a YAML file's line and column, a JSON request's field).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +25,9 @@ public:
   virtual double real(std::string_view field) = 0;
   virtual std::int64_t integer(std::string_view field, std::int64_t min, std::int64_t max) = 0;
   virtual Nanos time(std::string_view field) = 0;
+  // The field's text when it is written as a station address ("0x1002") where a format tells text
+  // from numbers; nothing otherwise (it is then read as a number).
+  virtual std::optional<std::string> address_text(std::string_view field) = 0;
   // Errors: a field the kind needs is absent (`why`: what it is for); a value that is not one of
   // the accepted ones (`what` says which are); a value that breaks a rule such as a range.
   [[noreturn]] virtual void missing(std::string_view field, std::string_view why) = 0;
@@ -32,7 +36,8 @@ public:
 };
 
 // Reads `kind` and the fields that kind takes; the fields it does not take are left unread, for
-// the source's own check of unexpected fields. Slaves are numbered 1..max_slave.
+// the source's own check of unexpected fields. Slaves are numbered 1..max_slave, or named by their
+// station address ("0x1002", ethercat/slave_ref.hpp), found when the fault starts.
 FaultSpec read_fault(FaultFieldSource& source, int max_slave);
 
 // One field a kind takes, as read_fault() reads it: for forms and API descriptions.

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "esc_model/esc_faults.hpp"
+#include "ethercat/registers.hpp"
+#include "ethercat/slave_ref.hpp"
 #include "plant/axis_faults.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/drive/drive_engine.hpp"
@@ -75,7 +79,21 @@ void FaultInjector::check(const FaultSpec& s) const {
     throw FaultError(fmt::format("{}: friction_scale must be >= 0", where()));
 }
 
-int FaultInjector::inject(const FaultSpec& spec, Nanos now) {
+FaultSpec FaultInjector::with_position(const FaultSpec& s) const {
+  if (s.station == 0 || s.slave != 0) return s;
+  std::vector<std::uint16_t> stations;
+  for (std::size_t i = 0; i < network_.size(); ++i) stations.push_back(network_.esc(i).peek_u16(ecat::reg::kStationAddress));
+  FaultSpec found = s;
+  try {
+    found.slave = static_cast<int>(ecat::slave_index({ecat::SlaveRef::Kind::address, s.station}, stations)) + 1;
+  } catch (const std::invalid_argument& e) {
+    throw FaultError(fmt::format("{}: {}", describe(s), e.what()));
+  }
+  return found;
+}
+
+int FaultInjector::inject(const FaultSpec& requested, Nanos now) {
+  const FaultSpec spec = with_position(requested);
   check(spec);
   if (info(spec.kind).one_shot) {
     apply_one_shot(spec, now);

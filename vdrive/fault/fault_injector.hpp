@@ -41,7 +41,8 @@ public:
   // than link_down are then refused.
   FaultInjector(network::Network& network, WireImpairment* wire);
 
-  // Starts `spec` now; returns its id (1, 2, ...). One-shot faults act and are not kept.
+  // Starts `spec` now; returns its id (1, 2, ...). One-shot faults act and are not kept. A slave
+  // named by its station address is found now, among the addresses the master has set.
   int inject(const FaultSpec& spec, Nanos now);
   // Ends fault `id`; false if no such fault is active.
   bool clear(int id, Nanos now);
@@ -53,6 +54,7 @@ public:
   const std::vector<ActiveFault>& active() const { return active_; }
 
 private:
+  FaultSpec with_position(const FaultSpec& spec) const;
   void check(const FaultSpec& spec) const;
   void apply_one_shot(const FaultSpec& spec, Nanos now);
   void set_drive_cause(const FaultSpec& spec, bool active, Nanos now);

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "ethercat/slave_ref.hpp"
+
 namespace vdrive::fault {
 namespace {
 
@@ -74,23 +76,24 @@ std::string_view name(Layer layer) {
 std::string describe(const FaultSpec& s) {
   const FaultKindInfo& i = info(s.kind);
   std::string text(i.name);
+  const std::string who = s.station != 0 && s.slave == 0 ? ecat::hex_address(s.station) : std::to_string(s.slave);
   switch (s.kind) {
     case K::drop: case K::corrupt: case K::duplicate: case K::reorder:
       text += fmt::format(" {} p={}", direction_name(s.direction), s.probability);
       break;
     case K::delay: text += fmt::format(" {} {} ns", direction_name(s.direction), s.delay); break;
     case K::link_down:
-      text += s.port == 0 ? fmt::format(" cable into slave {}", s.slave) : fmt::format(" cable at slave {} port {}", s.slave, s.port);
+      text += s.port == 0 ? fmt::format(" cable into slave {}", who) : fmt::format(" cable at slave {} port {}", who, s.port);
       break;
-    case K::lost_reply: case K::duplicate_reply: text += fmt::format(" slave {} x{}", s.slave, s.count); break;
-    case K::sdo_abort: text += fmt::format(" slave {} abort 0x{:08X}", s.slave, s.abort_code); break;
-    case K::alarm: text += fmt::format(" slave {} code {}", s.slave, s.alarm); break;
-    case K::collision: text += fmt::format(" slave {} at {}", s.slave, s.position); break;
+    case K::lost_reply: case K::duplicate_reply: text += fmt::format(" slave {} x{}", who, s.count); break;
+    case K::sdo_abort: text += fmt::format(" slave {} abort 0x{:08X}", who, s.abort_code); break;
+    case K::alarm: text += fmt::format(" slave {} code {}", who, s.alarm); break;
+    case K::collision: text += fmt::format(" slave {} at {}", who, s.position); break;
     case K::load_change:
-      text += fmt::format(" slave {} x{} +{}", s.slave, s.load_scale, s.force);
+      text += fmt::format(" slave {} x{} +{}", who, s.load_scale, s.force);
       if (s.friction_scale != 1.0) text += fmt::format(" friction x{}", s.friction_scale);
       break;
-    default: text += fmt::format(" slave {}", s.slave); break;
+    default: text += fmt::format(" slave {}", who); break;
   }
   if (!i.one_shot && s.duration > 0) text += fmt::format(" for {} us", s.duration / 1000);
   return text;

@@ -48,6 +48,9 @@ struct FaultSpec {
   // cable at this slave's port `port`; port 0 is the cable into it (slave 1: from the master),
   // ports 1..3 lead to the slaves cabled behind it. Other wire faults: unused.
   int slave = 0;
+  // Instead of `slave`: the slave with this configured station address (0x0010), which the master
+  // sets at run time; the injector finds its position when the fault starts. 0: `slave` holds.
+  std::uint16_t station = 0;
   int port = 0;                                // link_down only
   Nanos duration = 0;                          // 0: until cleared (or the end of the run)
   // wire

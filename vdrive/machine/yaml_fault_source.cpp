@@ -42,6 +42,13 @@ public:
     if (x < min || x > max) fail(v, f, fmt::format("{} is out of range ({}..{})", x, min, max));
     return x;
   }
+  std::optional<std::string> address_text(std::string_view f) override {
+    const YAML::Node v = at(f);
+    if (!v.IsScalar()) return std::nullopt;
+    const std::string& written = v.Scalar();
+    if (written.size() > 2 && written[0] == '0' && (written[1] == 'x' || written[1] == 'X')) return written;
+    return std::nullopt;
+  }
   Nanos time(std::string_view f) override {
     const YAML::Node v = at(f);
     const auto t = v.IsScalar() ? parse_time(v.Scalar()) : std::nullopt;

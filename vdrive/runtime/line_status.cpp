@@ -34,6 +34,7 @@ void LineStatusPublisher::sample() {
     SlaveStatus s;
     s.al_status = esc.peek_u16(kAlStatus);
     s.al_status_code = esc.peek_u16(kAlStatusCode);
+    s.station = esc.peek_u16(ecat::reg::kStationAddress);
     for (std::uint16_t a = kErrorCountersFirst; a <= kErrorCountersLast; ++a) s.rx_errors += esc.peek(a);
     if (drive::DriveEngine* engine = network_.firmware(i).drive(); engine != nullptr) {
       s.alarm = static_cast<std::int16_t>(engine->alarms().newest_index());

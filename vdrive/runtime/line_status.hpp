@@ -34,6 +34,7 @@ struct SlaveStatus {
   std::uint32_t rx_errors = 0;       // sum of the error counters 0x0300-0x030C (invalid frames, RX, forwarded, processing unit)
   std::uint16_t error_code = 0;      // 603Fh of a drive (0 for other slaves)
   std::int16_t alarm = -1;           // the drive's newest active alarm: its index in the product's alarm table, -1 none
+  std::uint16_t station = 0;         // register 0x0010: the station address the master set (0: none yet)
 };
 
 // Frames a wire fault (`vdrive fault inject drop|corrupt ...`, fault::WireImpairment between the
@@ -65,21 +66,24 @@ public:
   void publish(std::size_t i, const SlaveStatus& s) {
     packed_[i].store(std::uint64_t{s.al_status} | std::uint64_t{s.al_status_code} << 16 | std::uint64_t{s.rx_errors} << 32,
                      std::memory_order_relaxed);
-    error_codes_[i].store(static_cast<std::uint32_t>(s.error_code) | static_cast<std::uint32_t>(static_cast<std::uint16_t>(s.alarm + 1)) << 16,
+    error_codes_[i].store(std::uint64_t{s.error_code} | std::uint64_t{static_cast<std::uint16_t>(s.alarm + 1)} << 16 |
+                              std::uint64_t{s.station} << 32,
                           std::memory_order_relaxed);
   }
   SlaveStatus slave(std::size_t i) const {
     const std::uint64_t v = packed_[i].load(std::memory_order_relaxed);
-    const std::uint32_t drive = error_codes_[i].load(std::memory_order_relaxed);
+    const std::uint64_t drive = error_codes_[i].load(std::memory_order_relaxed);
     return {static_cast<std::uint16_t>(v), static_cast<std::uint16_t>(v >> 16), static_cast<std::uint32_t>(v >> 32),
-            static_cast<std::uint16_t>(drive), static_cast<std::int16_t>(static_cast<int>(drive >> 16) - 1)};
+            static_cast<std::uint16_t>(drive), static_cast<std::int16_t>(static_cast<int>((drive >> 16) & 0xFFFF) - 1),
+            static_cast<std::uint16_t>(drive >> 32)};
   }
 
 private:
   std::size_t slaves_;
   std::array<std::atomic<std::uint64_t>, kMaxStatusSlaves> packed_{};
-  // 603Fh | (alarm index + 1) << 16, read together; 0 (never published) is "no alarm".
-  std::array<std::atomic<std::uint32_t>, kMaxStatusSlaves> error_codes_{};
+  // 603Fh | (alarm index + 1) << 16 | station address << 32, read together; 0 (never published) is
+  // "no alarm".
+  std::array<std::atomic<std::uint64_t>, kMaxStatusSlaves> error_codes_{};
   std::atomic<std::uint64_t> wire_dropped_{0}, wire_corrupted_{0};
   std::atomic<bool> has_wire_{false};
   std::atomic<Nanos> sampled_at_{0};

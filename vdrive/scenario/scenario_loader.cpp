@@ -253,6 +253,11 @@ public:
   double real(std::string_view field) override { return m_.real(field); }
   std::int64_t integer(std::string_view field, std::int64_t min, std::int64_t max) override { return m_.integer(field, min, max); }
   Nanos time(std::string_view field) override { return m_.time(field); }
+  std::optional<std::string> address_text(std::string_view field) override {
+    const std::string written = m_.string(field);
+    if (written.size() > 2 && written[0] == '0' && (written[1] == 'x' || written[1] == 'X')) return written;
+    return std::nullopt;
+  }
   [[noreturn]] void missing(std::string_view field, std::string_view why) override {
     m_.fail("", fmt::format("missing \"{}\": {}", field, why));
   }
