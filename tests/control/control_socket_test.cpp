@@ -55,6 +55,29 @@ TEST_F(ControlSocketTest, RoundTripWithPrivateModesAndCleanup) {
   EXPECT_FALSE(fs::exists(path_));
 }
 
+// A flood is answered at once past the burst, never reaching the handler; the bound refills.
+TEST_F(ControlSocketTest, AFloodOfRequestsIsBounded) {
+  int handled = 0;
+  ControlServer server(
+      path_, [&handled](std::string_view) { return std::to_string(++handled); }, refuse());
+  int refused = 0;
+  std::string refusal;
+  for (int i = 0; i < 200; ++i) {
+    const std::string reply = control_call(path_, "x", 2'000'000'000);
+    if (reply.find("too many requests") != std::string::npos) {
+      ++refused;
+      refusal = reply;
+    }
+  }
+  EXPECT_GT(refused, 0);
+  EXPECT_EQ(handled + refused, 200);
+  EXPECT_GE(handled, static_cast<int>(kRequestBurst));
+  EXPECT_THAT(refusal, HasSubstr(R"("ok":false)"));
+  EXPECT_THAT(refusal, HasSubstr("at most 100 a second (50 at once); try again in "));
+  ::usleep(100'000);  // 10 more allowed by now
+  EXPECT_THAT(control_call(path_, "x", 2'000'000'000), ::testing::Not(HasSubstr("too many")));
+}
+
 TEST_F(ControlSocketTest, StaleSocketIsReplacedLiveOneRefused) {
   fs::create_directory(base_ + "/sub");
   {  // a socket file nobody listens on, as a killed vdrive leaves it

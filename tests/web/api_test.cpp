@@ -156,6 +156,31 @@ TEST(WebApi, OversizedBodiesAreRefused) {
   EXPECT_TRUE(json::parse(r->body).contains("error"));
 }
 
+// Changes past the bound are 429 with Retry-After and never reach the loop; reads are not bounded.
+TEST(WebApi, AFloodOfChangesIsBounded) {
+  WebLine line;
+  auto c = line.client();
+  int limited = 0;
+  std::string retry_after, error;
+  for (int i = 0; i < 120; ++i) {
+    auto r = c.Delete("/api/v1/faults");
+    ASSERT_TRUE(r);
+    if (r->status == 429) {
+      ++limited;
+      retry_after = r->get_header_value("Retry-After");
+      error = json::parse(r->body)["error"].get<std::string>();
+    }
+  }
+  EXPECT_GT(limited, 0);
+  EXPECT_EQ(retry_after, "1");
+  EXPECT_NE(error.find("too many requests"), std::string::npos) << error;
+  for (int i = 0; i < 120; ++i) {
+    auto r = c.Get("/api/v1/faults");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 200);
+  }
+}
+
 TEST(WebApi, UnknownEndpointsAre404WithAMessage) {
   WebLine line;
   auto r = line.client().Get("/api/v1/nothing");

@@ -13,6 +13,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "vdrive/control/control_protocol.hpp"
+
 namespace vdrive::control {
 namespace {
 
@@ -179,8 +181,12 @@ void ControlServer::serve_one(int client) {
   // The line is read (and ignored) first even from a refused peer, so its send cannot fail.
   const bool permitted = peer.uid == ::geteuid() || peer.uid == 0;
   std::string reply;
+  Nanos wait = 0;
   try {
-    reply = permitted ? handler_(line) : refuser_(peer.uid);
+    if (permitted && !rate_.take(&wait))
+      reply = format_reply(error_reply(ControlReply::Status::failed, rate_.refusal(wait)));
+    else
+      reply = permitted ? handler_(line) : refuser_(peer.uid);
   } catch (const std::exception&) {  // never let one request end the server (and vdrive)
     reply = R"({"ok":false,"status":"failed","error":"vdrive could not answer this request"})";
   }

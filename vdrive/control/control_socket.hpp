@@ -10,7 +10,9 @@
 // socket is removed when the server ends.
 //
 // ControlServer runs on its own thread and serves one connection at a time (a client that does
-// not send its line within 2 s is dropped); the handler runs on that thread.
+// not send its line within 2 s is dropped, a line over 64 KiB ends the connection); the handler
+// runs on that thread. Requests over the bound of request_rate.hpp are answered `failed`, "too
+// many requests", without reaching the handler.
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -18,6 +20,7 @@
 #include <thread>
 
 #include "common/clock.hpp"
+#include "vdrive/control/request_rate.hpp"
 
 namespace vdrive::control {
 
@@ -56,6 +59,7 @@ private:
   std::string path_;
   Handler handler_;
   Refuser refuser_;
+  RequestRate rate_;
   int listen_fd_ = -1;
   int stop_fd_ = -1;  // eventfd: ends run()
   unsigned long inode_ = 0;  // the socket file we made, so we never remove another's

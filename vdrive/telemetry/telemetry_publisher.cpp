@@ -12,6 +12,7 @@
 
 #include "TelemetryPubSubTypes.h"
 #include "vdrive/control/control_protocol.hpp"
+#include "vdrive/control/request_rate.hpp"
 #include "vdrive/telemetry/dds_node.hpp"
 
 namespace vdrive::telemetry {
@@ -101,6 +102,11 @@ struct TelemetryPublisher::Impl {
     dds::SampleInfo info;
     while (requests->take_next_sample(&m, &info) == ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;
+      Nanos wait = 0;
+      if (!rate.take(&wait)) {
+        reply(m.client(), m.request_id(), control::error_reply(control::ControlReply::Status::failed, rate.refusal(wait)));
+        continue;
+      }
       try {
         TelemetryRequest r = parse_telemetry_request(m.request());
         r.ticket = next_ticket++;
@@ -138,6 +144,7 @@ struct TelemetryPublisher::Impl {
   std::function<void()> wake;
   std::map<std::uint64_t, std::pair<std::string, std::uint32_t>> pending;  // ticket -> requester
   std::uint64_t next_ticket = 1;
+  control::RequestRate rate;  // over the bound: answered here, never queued for the loop
 };
 
 TelemetryPublisher::TelemetryPublisher(Sampler& sampler, int domain, std::function<void()> wake)

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "vdrive/control/fault_service.hpp"
+#include "vdrive/control/request_rate.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/telemetry/loop_services.hpp"
@@ -59,6 +60,7 @@ struct WebServer::Impl {
   const Clock& clock;
   WebServerOptions options;
   std::string token;
+  control::RequestRate change_rate;  // requests that change the line (the others only read)
   telemetry::Sampler sampler;
   LoopCalls calls;
   telemetry::LoopServices services;
@@ -103,6 +105,12 @@ struct WebServer::Impl {
     }
     if ((req.method == "POST" || req.method == "PUT") && req.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
       refuse(res, 415, "send the body as JSON (Content-Type: application/json)");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    Nanos wait = 0;
+    if (!change_rate.take(&wait)) {
+      res.set_header("Retry-After", std::to_string(std::max<Nanos>(1, (wait + 999'999'999) / 1'000'000'000)));
+      refuse(res, 429, change_rate.refusal(wait));
       return httplib::Server::HandlerResponse::Handled;
     }
     return httplib::Server::HandlerResponse::Unhandled;
