@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "vdrive/link/link_error.hpp"
 #include "vdrive/runtime/frame_overtake.hpp"
 
 namespace vdrive::runtime {
@@ -28,15 +29,26 @@ OnwardLink::OnwardLink(link::Link& master, link::Link& onward, network::Network&
 void OnwardLink::check_carrier(Nanos now) {
   if (now < next_carrier_check_) return;
   next_carrier_check_ = now + kCarrierInterval;
-  const bool up = onward_.carrier();
+  const bool up = !gone_ && onward_.carrier();
   if (up == network_.segment().onward_link()) return;
   network_.segment().set_onward_link(up);
   counters_.onward_link.store(up, std::memory_order_relaxed);
 }
 
 void OnwardLink::take_returns() {
+  if (gone_) return;
   for (int i = 0; i < kMaxFramesInOneGo; ++i) {
-    const std::size_t n = onward_.receive(returning_, 0);
+    std::size_t n = 0;
+    try {
+      n = onward_.receive(returning_, 0);
+    } catch (const link::LinkError&) {
+      // The interface was removed (a USB NIC unplugged, the peer's veth deleted): the cable is
+      // out for good, so the line ends at the last slave here. The master's link goes on.
+      gone_ = true;
+      next_carrier_check_ = 0;
+      check_carrier(clock_.now());
+      return;
+    }
     if (n == 0) return;
     const std::span<std::uint8_t> frame = std::span(returning_).first(n);
     if (!network_.return_frame(frame, clock_.now())) continue;
@@ -46,7 +58,7 @@ void OnwardLink::take_returns() {
 }
 
 bool OnwardLink::frame_waiting() {
-  if (onward_.peek_cost() == link::PeekCost::Free && onward_.frame_waiting()) take_returns();
+  if (!gone_ && onward_.peek_cost() == link::PeekCost::Free && onward_.frame_waiting()) take_returns();
   return master_.frame_waiting();
 }
 
@@ -66,7 +78,7 @@ std::size_t OnwardLink::receive(std::span<std::uint8_t> buf, Nanos timeout) {
     Nanos wait = std::min(until - now, kCarrierInterval);
     if (held) wait = std::min(wait, kHeldFrameSlice);
     const timespec ts{static_cast<time_t>(wait / 1'000'000'000), static_cast<long>(wait % 1'000'000'000)};
-    pollfd fds[2] = {{master_.fd(), POLLIN, 0}, {onward_.fd(), POLLIN, 0}};
+    pollfd fds[2] = {{master_.fd(), POLLIN, 0}, {gone_ ? -1 : onward_.fd(), POLLIN, 0}};  // -1: not polled
     const int ready = ::ppoll(fds, 2, &ts, nullptr);
     if (ready < 0) return 0;  // a signal: the caller looks at its stop flag and wakers
     if (fds[1].revents != 0) take_returns();

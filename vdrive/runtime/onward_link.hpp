@@ -11,7 +11,9 @@
 // The onward link's carrier is read at most every kCarrierInterval and becomes the onward port's
 // link (Segment::set_onward_link): with nothing cabled beyond (the peer down, the cable out) the
 // last slave closes its port 1 and the line ends there, as loop control does on the silicon.
-// A peer that has link but does not answer loses the frames, as a broken slave would.
+// A peer that has link but does not answer loses the frames, as a broken slave would. An onward
+// interface that disappears (its receive throws LinkError) is a link down for good: the line ends
+// at the last slave here and the run goes on serving the master.
 //
 // The master's link may be a wrapper (the wire-fault stage, telemetry's timing); when it cannot
 // say whether a frame waits (peek Unsupported: the wire fault holds frames), a wait is cut into
@@ -57,6 +59,7 @@ private:
   const Clock& clock_;
   LoopCounters& counters_;
   Nanos next_carrier_check_ = 0;
+  bool gone_ = false;  // the onward interface was removed
   std::array<std::uint8_t, link::kMaxFrame> returning_{};
 };
 
