@@ -4,11 +4,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <numbers>
 
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/exit_codes.hpp"
 #include "plant/plant_description.hpp"
 #include "vdrive/drive/product_plant.hpp"
+#include "vdrive/drive/unit_scaling.hpp"
 #include "vdrive/od/dictionary.hpp"
 #include "vdrive/od/dictionary_cache.hpp"
 #include "vdrive/profile/profile_loader.hpp"
@@ -16,16 +18,14 @@
 namespace vdrive::cli {
 namespace {
 
-// A power-on value, as the drive latches it (DriveEngine::latch_units): 0 for absent.
-std::uint64_t default_of(const od::Dictionary& d, std::uint16_t index, std::uint8_t sub) {
+// A power-on value of a 32-bit entry: 0 for absent.
+std::uint32_t default_of(const od::Dictionary& d, std::uint16_t index, std::uint8_t sub) {
   const od::EntryDesc* e = d.find(index, sub);
   if (e == nullptr) return 0;
-  std::uint64_t v = 0;
-  for (std::size_t i = 0; i < e->default_value.size() && i < 8; ++i) v |= static_cast<std::uint64_t>(e->default_value[i]) << (8 * i);
+  std::uint32_t v = 0;
+  for (std::size_t i = 0; i < e->default_value.size() && i < 4; ++i) v |= static_cast<std::uint32_t>(e->default_value[i]) << (8 * i);
   return v;
 }
-
-double at_least_one(std::uint64_t v) { return v == 0 ? 1.0 : static_cast<double>(v); }
 
 }  // namespace
 
@@ -45,18 +45,14 @@ PlotUnits revolution_units(const std::vector<std::string>& products, const std::
       }
     }();
     const std::shared_ptr<const od::Dictionary> d = od::shared_dictionary(profile);
-    // As the drive does: 608Fh-01h = 0 (the DS1000A-EC's factory value) means the motor's own
-    // encoder; no 6092h means a feed of one encoder revolution; other zeros count as 1.
-    std::uint64_t increments = default_of(*d, 0x608F, 1);
-    if (increments == 0) {
-      const plant::PlantDescription plant = drive::default_plant(profile);
-      increments = plant.axes.empty() ? 1 : plant.axes.front().encoder.counts_per_rev;
-    }
-    const double gear = at_least_one(default_of(*d, 0x6091, 1)) / at_least_one(default_of(*d, 0x6091, 2));
-    const double feed = d->find(0x6092, 1) != nullptr
-                            ? at_least_one(default_of(*d, 0x6092, 1)) / at_least_one(default_of(*d, 0x6092, 2))
-                            : at_least_one(increments);
-    const double rev_per_user = gear / feed;  // motor revolutions per position unit (unit_scaling.hpp)
+    // The power-on values, as the drive latches them (drive::factor_group).
+    const plant::PlantDescription plant = drive::default_plant(profile);
+    const drive::FactorObjects objects{default_of(*d, 0x608F, 1), default_of(*d, 0x608F, 2), default_of(*d, 0x6091, 1),
+                                       default_of(*d, 0x6091, 2), d->find(0x6092, 1) != nullptr, default_of(*d, 0x6092, 1),
+                                       default_of(*d, 0x6092, 2), 0};
+    drive::UnitScaling units;
+    units.apply(drive::factor_group(objects, plant.axes.empty() ? 1 : plant.axes.front().encoder.counts_per_rev));
+    const double rev_per_user = units.motor_rad_per_user() / (2.0 * std::numbers::pi);  // motor revolutions per position unit
     u.per_slave.push_back(PanelScale{rev_per_user, rev_per_user, 0.1, rev_per_user});
     u.notes.push_back(fmt::format("{}: {:g} position units per motor revolution (608Fh, 6091h, 6092h at power-on)", id,
                                   1.0 / rev_per_user));

@@ -103,17 +103,10 @@ ModeHandler* DriveEngine::handler_for(std::int8_t m) const {
 }
 
 void DriveEngine::latch_units() {
-  FactorGroup f;
-  auto at_least_one = [](std::uint32_t v) { return v == 0 ? 1u : v; };
-  // 608Fh-01h = 0 (DS1000A-EC factory value) or absent: the motor's own encoder resolution.
-  const std::uint32_t increments = obj_.encoder_increments.get();
-  f.encoder_increments = increments != 0 ? increments : std::max<std::uint32_t>(axis_spec_.encoder.counts_per_rev, 1);
-  f.encoder_revolutions = at_least_one(obj_.encoder_revolutions.get());
-  f.gear_motor_revolutions = at_least_one(obj_.gear_motor.get());
-  f.gear_shaft_revolutions = at_least_one(obj_.gear_shaft.get());
-  f.feed = obj_.feed.present() ? at_least_one(obj_.feed.get()) : f.encoder_increments;
-  f.feed_shaft_revolutions = at_least_one(obj_.feed_shaft.get());
-  f.polarity = obj_.polarity.get();
+  const FactorGroup f = factor_group({obj_.encoder_increments.get(), obj_.encoder_revolutions.get(), obj_.gear_motor.get(),
+                                      obj_.gear_shaft.get(), obj_.feed.present(), obj_.feed.get(), obj_.feed_shaft.get(),
+                                      obj_.polarity.get()},
+                                     axis_spec_.encoder.counts_per_rev);
   // Keep the user position where it is across the change (the axis did not move).
   const double angle = plant_.feedback(axis_).motor_angle_rad;
   const double before = units_.position_to_user(angle - zero_rad_) + offset_user_;

@@ -13,6 +13,19 @@ double ratio(std::uint32_t num, std::uint32_t den) {
 }
 }  // namespace
 
+FactorGroup factor_group(const FactorObjects& o, std::uint32_t counts_per_rev) {
+  auto at_least_one = [](std::uint32_t v) { return v == 0 ? 1u : v; };
+  FactorGroup f;
+  f.encoder_increments = o.encoder_increments != 0 ? o.encoder_increments : at_least_one(counts_per_rev);
+  f.encoder_revolutions = at_least_one(o.encoder_revolutions);
+  f.gear_motor_revolutions = at_least_one(o.gear_motor);
+  f.gear_shaft_revolutions = at_least_one(o.gear_shaft);
+  f.feed = o.has_feed ? at_least_one(o.feed) : f.encoder_increments;
+  f.feed_shaft_revolutions = at_least_one(o.feed_shaft);
+  f.polarity = o.polarity;
+  return f;
+}
+
 void UnitScaling::apply(const FactorGroup& f, bool torque_follows_velocity) {
   f_ = f;
   inc_per_rev_ = ratio(f.encoder_increments, f.encoder_revolutions);

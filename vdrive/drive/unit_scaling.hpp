@@ -15,6 +15,20 @@ struct FactorGroup {
   std::uint8_t polarity = 0;                                       // 607Eh
 };
 
+// The factor group's objects as they hold (0 for a subindex that is 0 or absent).
+struct FactorObjects {
+  std::uint32_t encoder_increments = 0, encoder_revolutions = 0;  // 608Fh-01h/-02h
+  std::uint32_t gear_motor = 0, gear_shaft = 0;                   // 6091h-01h/-02h
+  bool has_feed = false;                                          // 6092h exists
+  std::uint32_t feed = 0, feed_shaft = 0;                         // 6092h-01h/-02h
+  std::uint8_t polarity = 0;                                      // 607Eh
+};
+
+// What the drive makes of them: 608Fh-01h = 0 (the DS1000A-EC's factory value) is the motor's own
+// encoder resolution `counts_per_rev`; no 6092h is a feed of one encoder revolution; any other 0
+// counts as 1. The drive (DriveEngine) and the tools that scale its values (vdrive plot) both use it.
+FactorGroup factor_group(const FactorObjects& objects, std::uint32_t counts_per_rev);
+
 class UnitScaling {
 public:
   // Polarity bits: 7 position, 6 velocity, 5 torque (A6B/DS5C1); the DS1000-EC has no bit 5 and
