@@ -16,6 +16,7 @@
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/fault_inject_options.hpp"
 #include "vdrive/control/control_protocol.hpp"
+#include "vdrive/runtime/line_status.hpp"
 #include "vdrive/runtime/stop_signal.hpp"
 #include "vdrive/telemetry/sampler.hpp"
 #include "vdrive/telemetry/telemetry_client.hpp"
@@ -46,22 +47,11 @@ std::string csv_text(std::string s) {
   return '"' + s + '"';
 }
 
-const char* state_name(std::uint16_t al) {
-  switch (al & 0x0F) {
-    case 1: return "Init";
-    case 2: return "PreOp";
-    case 3: return "Boot";
-    case 4: return "SafeOp";
-    case 8: return "Op";
-  }
-  return "?";
-}
-
 }  // namespace
 
 std::string telemetry_axis_line(const telemetry::AxisSample& a) {
   return fmt::format("t={:.3f}s slave {} {}{} sw=0x{:04X} cw=0x{:04X} mode={} pos={} vel={} torque={} ferr={} err=0x{:04X}{}",
-                     static_cast<double>(a.time) * 1e-9, a.slave, state_name(a.al_state), (a.al_state & 0x10) ? "+ERR" : "",
+                     static_cast<double>(a.time) * 1e-9, a.slave, runtime::al_state_name(a.al_state), (a.al_state & 0x10) ? "+ERR" : "",
                      a.statusword, a.controlword, a.mode, a.position, a.velocity, a.torque, a.following_error, a.error_code,
                      std::isnan(a.winding_c) ? std::string() : fmt::format(" winding={:.1f}C", a.winding_c));
 }
