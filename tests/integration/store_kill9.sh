@@ -10,7 +10,7 @@
 # never the defaults (a torn file is ignored and would give defaults). The store writes a
 # temporary file, fsyncs it and renames it over the old one (vdrive/firmware/coe/parameter_store.hpp).
 # The unit test KilledAtAnyMomentOfASaveARestartLoadsOneWholeGeneration kills a saving process
-# 150 times more tightly.
+# 60 times more tightly.
 #
 # Usage: bash store_kill9.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
 # Environment: ITERATIONS (default 50).
