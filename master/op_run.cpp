@@ -125,7 +125,11 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
     const bool all_in_op = task.all_in(AlState::Op);
     if (!all_in_op) {
       ++result.left_op;
-      if (!out) out = true, out_since = cycle, out_overdue = false;
+      if (!out) {
+        out = true;
+        out_since = cycle;
+        out_overdue = false;
+      }
       if (!out_overdue && cycle - out_since > bound_cycles) {
         out_overdue = true;
         ++result.overdue;
