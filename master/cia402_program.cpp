@@ -38,7 +38,8 @@ SineProgram::SineProgram(const SineProgramOptions& options) : options_(options) 
 void SineProgram::preop(Master& master) {
   master_ = &master;
   channels_.assign(master.slaves().size(), Channel{});
-  results_.assign(master.slaves().size(), DriveResult{});
+  DriveResult blank{.recover = options_.recover, .recovery = DriveRecovery(options_.recovery_bound)};
+  results_.assign(master.slaves().size(), blank);
   for (std::size_t i = 0; i < master.slaves().size(); ++i) {
     DriveResult& r = results_[i];
     const Slave& s = master.slaves()[i];
@@ -122,8 +123,14 @@ void SineProgram::outputs(std::span<std::uint8_t> image) {
       image_put<std::int32_t>(image, c.target, c.position);
       continue;
     }
-    if (s & 0x0008) cw = c.last_cw == 0x0080 ? 0x0000 : 0x0080;     // fault: reset on a 0->1 edge
-    else if ((s & 0x004F) == 0x0040) cw = 0x0006;                    // switch on disabled -> shutdown
+    if (!(s & 0x0008)) c.fault_since = -1;
+    else if (c.fault_since < 0) c.fault_since = c.now;
+    if (s & 0x0008) {
+      // Fault: reset on a 0->1 edge; recovering, only after the reaction had `reset_after` to run
+      // (a stop ramp, the alarm showing on the drive and in its log), as a PLC's reset logic waits.
+      const bool hold = options_.recover && c.now - c.fault_since < options_.reset_after;
+      cw = hold || c.last_cw == 0x0080 ? 0x0000 : 0x0080;
+    } else if ((s & 0x004F) == 0x0040) cw = 0x0006;                    // switch on disabled -> shutdown
     else if ((s & 0x006F) == 0x0021) cw = 0x0007;                    // ready -> switch on
     else if ((s & 0x006F) == 0x0023 || (s & 0x006F) == 0x0027) cw = 0x000F;  // switched on -> enable
     c.last_cw = cw;
@@ -141,7 +148,7 @@ void SineProgram::outputs(std::span<std::uint8_t> image) {
         const double x = results_[i].amplitude * (1.0 - std::cos(2.0 * std::numbers::pi * options_.frequency_hz * 1e-9 *
                                                                  static_cast<double>(t)));
         target = c.start + static_cast<std::int32_t>(std::lround(x));
-        if (t > options_.motion) c.finished = true;
+        if (c.now - c.first_enabled_at - options_.settle > options_.motion) c.finished = true;
       }
     }
     image_put<std::int32_t>(image, c.target, target);
@@ -162,12 +169,19 @@ void SineProgram::inputs(std::span<std::uint8_t> image) {
     // (again) from where the axis is, so a re-enabled drive gets no step.
     if (enabled && !c.enabled) {
       c.enabled_at = c.now;
+      if (c.first_enabled_at < 0) c.first_enabled_at = c.now;
       c.start = c.position;
       r.enabled = true;
     }
     c.enabled = enabled;
     if (r.enabled && (c.status_value & 0x0008)) r.faulted = true;
-    if (c.enabled_at >= 0 && c.now - c.enabled_at > options_.settle && !c.finished) {
+    // After the sine the program disables the drive itself: no outage.
+    if (!c.finished) {
+      const DriveRecovery::Event event = r.recovery.update(c.now, enabled, r.error_code);
+      if (event != DriveRecovery::Event::none && on_recovery_) on_recovery_(r, event);
+    }
+    // Only while enabled: a disabled drive's 60F4h says nothing of how it follows.
+    if (enabled && c.now - c.enabled_at > options_.settle && !c.finished) {
       const std::int64_t fe = std::abs(static_cast<std::int64_t>(image_get<std::int32_t>(image, c.following)));
       r.max_following_error = std::max(r.max_following_error, fe);
       ++r.samples;
@@ -186,6 +200,15 @@ std::uint64_t SineProgram::cycles_needed(Nanos cycle) const {
   return static_cast<std::uint64_t>((options_.settle + options_.motion) / cycle) + 5000;
 }
 
+std::size_t SineProgram::drives() const {
+  return static_cast<std::size_t>(std::count_if(channels_.begin(), channels_.end(), [](const Channel& c) { return c.mapped; }));
+}
+
+std::size_t SineProgram::enabled_now() const {
+  return static_cast<std::size_t>(
+      std::count_if(channels_.begin(), channels_.end(), [](const Channel& c) { return c.mapped && c.enabled; }));
+}
+
 bool SineProgram::done() const {
   bool any = false;
   for (const Channel& c : channels_) {
@@ -201,16 +224,34 @@ bool SineProgram::done() const {
 std::string verdict(const DriveResult& r) {
   if (r.ok()) return "ok";
   if (!r.enabled) return "FAILED (never reached Operation enabled)";
+  if (r.recover && r.recovery.overdue() > 0)
+    return fmt::format("FAILED (not enabled again within the bound: {} of {} outages)", r.recovery.overdue(),
+                       r.recovery.outages());
   if (r.faulted) return fmt::format("FAILED (faulted, 603Fh {:04X}h)", r.error_code);
   if (r.samples == 0) return "FAILED (no sine cycle measured)";
   return fmt::format("FAILED (following error {} beyond the window {})", r.max_following_error, r.following_window);
 }
 
+// "; 3 outages, 3 recovered (603Fh FF18h x2, none x1), longest 412 ms"
+static std::string outages(const DriveResult& r) {
+  const DriveRecovery& d = r.recovery;
+  if (!r.recover && d.outages() == 0) return "";
+  std::string codes;
+  for (const AlarmCount& a : d.codes()) {
+    codes += codes.empty() ? " (" : ", ";
+    codes += a.code != 0 ? fmt::format("603Fh {:04X}h x{}", a.code, a.count) : fmt::format("none x{}", a.count);
+  }
+  if (d.other_codes() > 0) codes += fmt::format(", {} others", d.other_codes());
+  if (!codes.empty()) codes += ")";
+  return fmt::format("; {} outages, {} recovered{}, longest {} ms{}", d.outages(), d.recoveries(), codes,
+                     d.longest() / 1'000'000, d.out() ? ", out at the end" : "");
+}
+
 std::string describe(const DriveResult& r) {
   return fmt::format("{}: {}, amplitude {:.0f}, max following error {} (window 6065h = {}; position "
-                     "units of 6064h) over {} cycles, statusword 0x{:04X}, 603Fh 0x{:04X}{}{}",
-                     ecat::slave_label(r.position, r.station, r.name), verdict(r), r.amplitude, r.max_following_error, r.following_window, r.samples,
-                     r.statusword, r.error_code, r.note.empty() ? "" : ": ", r.note);
+                     "units of 6064h) over {} cycles, statusword 0x{:04X}, 603Fh 0x{:04X}{}{}{}",
+                     ecat::slave_label(r.position, r.station, r.name), verdict(r), r.amplitude, r.max_following_error,
+                     r.following_window, r.samples, r.statusword, r.error_code, outages(r), r.note.empty() ? "" : ": ", r.note);
 }
 
 }  // namespace vdrive::master

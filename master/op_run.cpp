@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "master/dc.hpp"
 #include "master/master.hpp"
 
@@ -12,11 +14,17 @@ constexpr std::uint16_t kSmOutputParameter = 0x1C32, kSmInputParameter = 0x1C33;
 constexpr std::uint16_t kSyncTypeDcSync0 = 2;
 constexpr std::uint8_t kAlAcknowledge = 0x10;  // AL control bit 4: Error Ind Ack (ETG.1000.6)
 
+// A slave behind a broken cable does not answer: that is said, not thrown, so a recovering run
+// goes on and asks again once the cable heals.
 std::string al_summary(Master& master) {
   std::string text;
   for (std::size_t i = 0; i < master.slaves().size(); ++i) {
-    master.read_al_status(i);
-    text += "\n  " + describe(master.slaves()[i]);
+    try {
+      master.read_al_status(i);
+      text += "\n  " + describe(master.slaves()[i]);
+    } catch (const std::exception& e) {
+      text += fmt::format("\n  {}  0x{:04X}  no answer ({})", i, master.slaves()[i].station, e.what());
+    }
   }
   return text;
 }
@@ -107,9 +115,26 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
   say("Op");
   task.reset_stats();
   bool recovering = false;
+  std::uint64_t cycle = 0, out_since = 0;
+  bool out = false, out_overdue = false;
+  const std::uint64_t status_cycles =
+      options.status_every > 0 ? static_cast<std::uint64_t>(std::max<Nanos>(1, options.status_every / options.cycle)) : 0;
+  const std::uint64_t bound_cycles = static_cast<std::uint64_t>(std::max<Nanos>(1, options.recover_bound / options.cycle));
   task.run(options.cycles, [&] {
-    if (!task.all_in(AlState::Op)) {
+    ++cycle;
+    const bool all_in_op = task.all_in(AlState::Op);
+    if (!all_in_op) {
       ++result.left_op;
+      if (!out) {
+        out = true;
+        out_since = cycle;
+        out_overdue = false;
+      }
+      if (!out_overdue && cycle - out_since > bound_cycles) {
+        out_overdue = true;
+        ++result.overdue;
+        say(fmt::format("not back in Op within {} ms:{}", options.recover_bound / 1'000'000, al_summary(master)));
+      }
       if (options.recover && !recovering) {
         // Op with the Error Ind Ack bit: the slave clears its error and goes back to Op.
         task.request_state(static_cast<AlState>(static_cast<std::uint8_t>(AlState::Op) | kAlAcknowledge));
@@ -117,13 +142,24 @@ OpRunResult run_to_op(Master& master, const OpRunOptions& options,
         ++result.recoveries;
         say(fmt::format("left Op:{}; acknowledging and requesting Op", al_summary(master)));
       }
-    } else if (recovering) {
-      task.request_state(static_cast<AlState>(0));  // back in Op: stop writing AL control
-      recovering = false;
-      say("back in Op");
+    } else {
+      if (out) {
+        result.longest_out_of_op = std::max(result.longest_out_of_op, static_cast<Nanos>(cycle - out_since) * options.cycle);
+        out = false;
+      }
+      if (recovering) {
+        task.request_state(static_cast<AlState>(0));  // back in Op: stop writing AL control
+        recovering = false;
+        say(fmt::format("back in Op after {} ms", static_cast<Nanos>(cycle - out_since) * options.cycle / 1'000'000));
+      }
+    }
+    if (status_cycles > 0 && options.status && cycle % status_cycles == 0) {
+      options.status(OpStatus{static_cast<Nanos>(cycle) * options.cycle, &task.stats(), result.left_op,
+                              result.recoveries, all_in_op});
     }
     return options.done && options.done();
   });
+  if (out) result.longest_out_of_op = std::max(result.longest_out_of_op, static_cast<Nanos>(cycle - out_since) * options.cycle);
   result.stats = task.stats();
   say(fmt::format("{} cycles in Op, {} wrong working counters, {} lost frames, worst lateness {} us (the latest a "
                   "cycle's frame left after its planned time)",

@@ -21,6 +21,14 @@ namespace vdrive::master {
 
 class Master;
 
+struct OpStatus {
+  Nanos in_op = 0;                         // time since Op was first reached (cycles x cycle)
+  const CyclicStats* stats = nullptr;
+  std::uint64_t left_op = 0;
+  std::uint64_t recoveries = 0;
+  bool all_in_op = false;                  // in the last cycle
+};
+
 struct OpRunOptions {
   Nanos cycle = 1'000'000;
   Nanos reply_timeout = 0;                 // per cycle frame; 0: the cycle, at least 1 ms
@@ -35,6 +43,12 @@ struct OpRunOptions {
   // In Op, as a PLC does: a slave that leaves Op (an AL error such as an SM watchdog after a stall
   // or an injected fault) is acknowledged and asked for Op again, every cycle until it is back.
   bool recover = false;
+  // With `recover`: a line out of Op for longer than this did not come back (OpRunResult::overdue).
+  Nanos recover_bound = 10'000'000'000;
+  // Every `status_every` (0: never) of the cycles in Op, `status` gets the counters so far, so a
+  // long run can be followed (and a fault's effect told from the counters before and after it).
+  Nanos status_every = 0;
+  std::function<void(const OpStatus&)> status;
   // The application: `preop` runs once in Pre-Op before the process data is configured (start-up
   // SDOs, PDO remapping); `outputs`/`inputs` run in every cycle from Safe-Op on, around the frame,
   // with the whole process image. The cycles in Op end early when `done` returns true.
@@ -52,9 +66,14 @@ struct OpRunResult {
   std::uint64_t sync0_start = 0;
   std::uint64_t left_op = 0;               // cycles whose AL status was not all-Op
   std::uint64_t recoveries = 0;            // times the line left Op and was asked back (recover)
+  std::uint64_t overdue = 0;               // times it stayed out of Op beyond recover_bound
+  Nanos longest_out_of_op = 0;             // the longest time the line was not all in Op
   std::vector<std::string> notes;          // fallbacks and skipped steps, one line each
   std::string error;                       // why Op was not reached (empty when it was)
   bool ok() const { return reached_op && stats.wrong_wkc == 0 && left_op == 0 && stats.cycles > 0; }
+  // What a recovering run promises instead: faults may cost frames and Op, but the line came back
+  // within the bound every time.
+  bool recovered() const { return reached_op && stats.cycles > 0 && overdue == 0; }
 };
 
 // 1C32h/1C33h of slave `i`: DC SYNC0 synchronisation (type 2) and the cycle time, ETG.1020. What a

@@ -39,16 +39,12 @@ case "$SECONDS_TO_RUN" in ''|*[!0-9]*) echo "run.sh: SECONDS must be a whole num
 
 # shellcheck source=../../tests/integration/lib/veth_line.sh
 . "$HERE/../../tests/integration/lib/veth_line.sh"
+# shellcheck source=soak_lib.sh
+. "$HERE/soak_lib.sh"
 require_tools stdbuf
 mkdir -p "$OUT" || fail "cannot create $OUT"
 
-rss_kib() { awk '/^VmRSS:/ {print $2}' "/proc/$1/status" 2>/dev/null; }
-
-{
-  echo "soak: $SECONDS_TO_RUN s, 3 drives (a6b ds5c1 ds1000a), DC at 1 kHz, csp sine"
-  echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(uname -r)"
-  echo "start: $(date -u '+%Y-%m-%d %H:%M:%S UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg)"
-} >"$OUT/result.txt"
+soak_header "$OUT/result.txt" "soak: $SECONDS_TO_RUN s, 3 drives (a6b ds5c1 ds1000a), DC at 1 kHz, csp sine"
 
 start_line --rt-priority 80 --drive a6b --drive ds5c1 --drive ds1000a
 wait_for_line
@@ -61,19 +57,9 @@ MASTER_PID=$!
 echo "seconds,rss_kib" >"$OUT/rss.csv"
 t0=$(date +%s)
 op_at=""
-baseline=""
-max_after=0
 while kill -0 "$MASTER_PID" 2>/dev/null; do
-  now=$(( $(date +%s) - t0 ))
-  rss=$(rss_kib "$VDRIVE_PID")
-  [ -n "$rss" ] || fail "vdrive exited during the soak"
-  echo "$now,$rss" >>"$OUT/rss.csv"
-  [ -z "$op_at" ] && grep -qx "Op" "$OUT/master.txt" && op_at=$now
-  if [ -n "$op_at" ] && [ -z "$baseline" ] && [ $((now - op_at)) -ge "$BASELINE_S" ]; then
-    baseline=$rss
-  elif [ -n "$baseline" ] && [ "$rss" -gt "$max_after" ]; then
-    max_after=$rss
-  fi
+  rss_sample "$VDRIVE_PID" "$OUT/rss.csv" "$t0" || fail "vdrive exited during the soak"
+  [ -z "$op_at" ] && grep -qx "Op" "$OUT/master.txt" && op_at=$(( $(date +%s) - t0 ))
   sleep "$INTERVAL"
 done
 wait "$MASTER_PID"
@@ -82,10 +68,12 @@ end_rss=$(rss_kib "$VDRIVE_PID")
 kill -INT "$VDRIVE_PID"; wait "$VDRIVE_PID" 2>/dev/null; VDRIVE_PID=""
 cp "$WORK/vdrive.log" "$OUT/vdrive.log"
 
+read -r baseline max_after growth _ <<<"$(rss_growth "$OUT/rss.csv" "$(( ${op_at:-999999} + BASELINE_S ))")"
+[ "$baseline" = none ] && baseline=""
 summary=$(grep "^summary:" "$OUT/master.txt")
 stopped=$(grep -o "stopped: .*" "$OUT/vdrive.log" | tail -n 1)
+soak_footer "$OUT/result.txt"
 {
-  echo "end: $(date -u '+%Y-%m-%d %H:%M:%S UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "master: exit $master_rc; $summary"
   echo "vdrive: $stopped"
   grep -E "^slave [0-9]+ @0x|worst lateness" "$OUT/master.txt"
@@ -101,6 +89,5 @@ set -- $in
 [ $# -eq 4 ] || fail "vdrive did not log its frame counters at exit"
 [ "$1" -eq "$2" ] && [ "$3" -eq 0 ] && [ "$4" -eq 0 ] || fail "vdrive lost frames: $stopped"
 [ -n "$baseline" ] || fail "no RSS sample ${BASELINE_S} s after Op (run too short?)"
-growth=$((max_after - baseline))
 [ "$growth" -le "$RSS_SLACK_KIB" ] || fail "resident memory grew by $growth KiB in Op (slack $RSS_SLACK_KIB KiB)"
 echo "PASS: no lost frames, no wrong working counters, RSS growth in Op $growth KiB (<= $RSS_SLACK_KIB KiB); results in $OUT"

@@ -9,11 +9,20 @@
 //   vdrive-master op        --iface IF [--cycle-us 1000] [--dc] [--cycles N] [--drift-frames N]
 //                           [--rt-priority N] [--reply-timeout-us N]
 //                           [--sine [--amplitude U | --revolutions R] [--frequency HZ] [--seconds S]]
+//                           [--recover [--recover-bound-ms MS]] [--status-every-ms MS]
 //
 // `op --sine` runs a CiA 402 program in Op (master/cia402_program.hpp): every drive is mapped for
 // csp, enabled, and follows 607Ah = start + U (1 - cos(2 pi f t)); each drive's largest following error
 // (60F4h) is printed against its window 6065h and exit status 1 reports a drive that faulted,
 // never got enabled or left the window.
+//
+// `op --recover` runs as a PLC that rides out faults: a slave that leaves Op is acknowledged and
+// asked back, a drive in Fault is reset and enabled again and moves on from where it stands. Each
+// outage is printed as it starts and ends ("@T slave 1 @0x1001 MADLN15BE: out (603Fh FF18h)",
+// "@T slave 1 @0x1001 MADLN15BE: enabled again after 412 ms", T the wall clock in seconds, so a
+// script can match them with what it injected), each drive's count in its verdict; exit status 1
+// when the line or a drive did not come back within --recover-bound-ms (default 10000).
+// --status-every-ms prints the counters so far ("@T status: ...").
 //
 // --slave is the position scan prints (1 = first slave) or the station address (0x1001). Exit status, as vdrive's: 0
 // success; 1 the line did not do what was asked (no reply, no slaves, a mailbox/SDO failure — an
@@ -31,6 +40,7 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <time.h>
 #include <string>
 
 #include "master/al_state.hpp"
@@ -197,6 +207,21 @@ int run_od_list(const std::string& iface, const std::string& slave_text, bool na
   return 0;
 }
 
+// Seconds since the epoch with milliseconds, as `date +%s.%3N` prints them: event lines carry it
+// so that a script matches them with what it did (vdrive fault inject) at that time. Printed in
+// the cycle (status lines, outages): a buffer on the stack, no allocation.
+struct WallTime {
+  char text[32];
+  const char* c_str() const { return text; }
+};
+WallTime wall_time() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_REALTIME, &ts);
+  WallTime w{};
+  std::snprintf(w.text, sizeof(w.text), "@%lld.%03d", static_cast<long long>(ts.tv_sec), static_cast<int>(ts.tv_nsec / 1'000'000));
+  return w;
+}
+
 // SCHED_FIFO and locked memory, so that a loaded host does not delay a cycle by milliseconds.
 void enter_realtime(int priority) {
   sched_param param{};
@@ -221,8 +246,39 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
     program.emplace(*sine);
     program->attach(options);
     options.cycles = program->cycles_needed(options.cycle);
+    if (options.recover) {
+      // Printed in the cycle, but only when a drive's outage starts or ends: a fault, not a cycle.
+      program->on_recovery([](const vdrive::master::DriveResult& r, vdrive::master::DriveRecovery::Event event) {
+        using Event = vdrive::master::DriveRecovery::Event;
+        const auto& d = r.recovery;
+        const std::string who = vdrive::ecat::slave_label(r.position, r.station, r.name);
+        if (event == Event::lost)
+          std::printf("%s %s: out (603Fh %04Xh)\n", wall_time().c_str(), who.c_str(), d.code());
+        else if (event == Event::recovered)
+          std::printf("%s %s: enabled again after %lld ms (603Fh %04Xh)\n", wall_time().c_str(), who.c_str(),
+                      static_cast<long long>(d.last_duration() / 1'000'000), d.code());
+        else if (event == Event::overdue)
+          std::printf("%s %s: not enabled again within the bound (603Fh %04Xh)\n", wall_time().c_str(), who.c_str(),
+                      d.code());
+      });
+    }
   }
-  const auto result = vdrive::master::run_to_op(master, options, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
+  if (options.status_every > 0) {
+    options.status = [&program](const vdrive::master::OpStatus& s) {
+      std::printf("%s status: %llu cycles, %llu wrong, %llu lost, %llu not all in Op, line %s, %zu/%zu drives enabled\n",
+                  wall_time().c_str(), static_cast<unsigned long long>(s.stats->cycles),
+                  static_cast<unsigned long long>(s.stats->wrong_wkc), static_cast<unsigned long long>(s.stats->lost_frames),
+                  static_cast<unsigned long long>(s.left_op), s.all_in_op ? "in Op" : "out of Op",
+                  program ? program->enabled_now() : std::size_t{0}, program ? program->drives() : std::size_t{0});
+    };
+  }
+  const bool recover = options.recover;
+  bool in_op = false;  // after Op the lines are events: stamped with the wall clock
+  const auto result = vdrive::master::run_to_op(master, options, [&](const std::string& line) {
+    if (recover && in_op) std::printf("%s %s\n", wall_time().c_str(), line.c_str());
+    else std::printf("%s\n", line.c_str());
+    in_op = in_op || line == "Op";
+  });
   for (const auto& note : result.notes) std::printf("note: %s\n", note.c_str());
   // Every drive's verdict, whatever else went wrong: a failed run shows what each drive did.
   bool drives_ok = true;
@@ -240,6 +296,18 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
               static_cast<unsigned long long>(result.stats.cycles), static_cast<long long>(options.cycle / 1000),
               result.layout.expected_wkc, static_cast<unsigned long long>(result.stats.wrong_wkc),
               static_cast<unsigned long long>(result.stats.lost_frames), static_cast<unsigned long long>(result.left_op));
+  if (recover) {
+    std::printf("recovery: the line left Op %llu times, longest out %lld ms, %llu not back within %lld ms\n",
+                static_cast<unsigned long long>(result.recoveries),
+                static_cast<long long>(result.longest_out_of_op / 1'000'000),
+                static_cast<unsigned long long>(result.overdue), static_cast<long long>(options.recover_bound / 1'000'000));
+    if (!result.recovered()) {
+      std::fprintf(stderr, "vdrive-master: the line did not come back to Op within %lld ms\n",
+                   static_cast<long long>(options.recover_bound / 1'000'000));
+      return kExitFailure;
+    }
+    return drives_ok ? kExitOk : kExitFailure;
+  }
   if (!result.ok()) {
     std::fprintf(stderr, "vdrive-master: %llu wrong working counters in %llu cycles\n",
                  static_cast<unsigned long long>(result.stats.wrong_wkc), static_cast<unsigned long long>(result.stats.cycles));
@@ -325,6 +393,15 @@ int main(int argc, char** argv) {
       ->excludes(amplitude);
   op->add_option("--frequency", sine_options.frequency_hz, "Sine frequency in Hz (default 1)")->check(CLI::Range(0.001, 100.0));
   op->add_option("--seconds", sine_seconds, "How long the sine runs (default 2)")->check(CLI::Range(0.01, 3600.0));
+  op->add_flag("--recover", op_options.recover,
+               "Ride out faults as a PLC does: acknowledge AL errors and request Op again, reset and re-enable "
+               "faulted drives; fail only when one does not come back within --recover-bound-ms");
+  long long recover_bound_ms = 10000;
+  op->add_option("--recover-bound-ms", recover_bound_ms, "With --recover: how long the line and each drive may stay out (default 10000)")
+      ->check(CLI::Range(10, 3'600'000));
+  long long status_every_ms = 0;
+  op->add_option("--status-every-ms", status_every_ms, "Print the counters every MS in Op (default: never)")
+      ->check(CLI::Range(10, 3'600'000));
   vdrive::master::tool::FoeCommand foe(app);  // foe-write, foe-read
   app.set_version_flag("--version", std::string("vdrive-master ") + VDRIVE_VERSION);
   app.footer(
@@ -334,6 +411,7 @@ int main(int argc, char** argv) {
       "  vdrive-master sdo-read --iface m2m --slave 1 --index 0x1018 --sub 1 --type u32\n"
       "  vdrive-master op --iface m2m --dc --cycle-us 1000 --cycles 10000 --rt-priority 70\n"
       "  vdrive-master op --iface m2m --dc --sine --revolutions 0.5\n"
+      "  vdrive-master op --iface m2m --dc --sine --seconds 600 --recover --status-every-ms 1000\n"
       "Exit status (as vdrive's): 0 done, 1 the line did not do it (no reply, state not reached, wrong working\n"
       "counters, a drive faulted, an SDO abort), 2 a bad command line, 3 no such interface or it is down,\n"
       "4 not permitted (root or CAP_NET_RAW). Details: docs/master.md");
@@ -359,10 +437,14 @@ int main(int argc, char** argv) {
     op_options.cycle = cycle_us * 1000;
     op_options.dc = dc;
     op_options.reply_timeout = timeout_us * 1000;
+    op_options.recover_bound = recover_bound_ms * 1'000'000;
+    op_options.status_every = status_every_ms * 1'000'000;
     std::optional<vdrive::master::SineProgramOptions> sine_run;
     if (sine) {
       sine_options.cycle = op_options.cycle;
       sine_options.motion = static_cast<vdrive::Nanos>(sine_seconds * 1e9);
+      sine_options.recover = op_options.recover;
+      sine_options.recovery_bound = op_options.recover_bound;
       sine_run = sine_options;
     }
     return run_op(iface, op_options, rt_priority, sine_run);

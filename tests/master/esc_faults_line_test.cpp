@@ -105,6 +105,39 @@ TEST_F(EscFaultsInOp, WithRecoverTheMasterTakesTheLineBackToOpOnceTheCauseIsGone
   EXPECT_EQ(esc_u16(1, ecat::reg::kAlStatus), 0x0008) << "acknowledged and back in Op";
 }
 
+// How long the line was out is measured, the bound is checked, and the status callback follows
+// the counters in the cycles (what `vdrive-master op --recover --status-every-ms` prints).
+TEST_F(EscFaultsInOp, TheTimeOutOfOpIsMeasuredAndBoundedAndTheStatusFollowsIt) {
+  OpRunOptions o = options();
+  o.recover = true;
+  o.recover_bound = 50 * kMs;
+  o.status_every = 100 * kMs;
+  std::vector<OpStatus> statuses;
+  o.status = [&](const OpStatus& s) { statuses.push_back(s); };
+  int cycles = 0;
+  o.done = [&] {
+    ++cycles;
+    // Slave 2 executes nothing, the BRD of the AL status too: the line is out until it is lifted
+    // (and its SM watchdog expires meanwhile, which the acknowledgement clears).
+    if (cycles == 100) line.network().esc(1).set_faults({.wkc_error = true});
+    if (cycles == 300) line.network().esc(1).set_faults({});
+    return false;
+  };
+  const OpRunResult r = run_to_op(master, o);
+  ASSERT_TRUE(r.reached_op) << r.error;
+  EXPECT_GE(r.longest_out_of_op, 150 * kMs) << "out from about cycle 100 until the fault was lifted at 300";
+  EXPECT_LE(r.longest_out_of_op, 260 * kMs);
+  EXPECT_EQ(r.overdue, 1u) << "beyond the 50 ms bound once";
+  EXPECT_FALSE(r.recovered());
+  ASSERT_EQ(statuses.size(), 6u) << "every 100 of the 600 cycles";
+  EXPECT_EQ(statuses[0].in_op, 100 * kMs);
+  EXPECT_TRUE(statuses[0].all_in_op);
+  EXPECT_FALSE(statuses[1].all_in_op) << "at cycle 200 slave 2 is out";
+  EXPECT_GT(statuses[2].left_op, 0u);
+  EXPECT_TRUE(statuses[5].all_in_op) << "back by cycle 600";
+  EXPECT_EQ(statuses[5].left_op, r.left_op);
+}
+
 TEST_F(EscFaultsInOp, WithoutRecoverTheLineStaysOutOfOp) {
   const OpRunResult r = run(1, [&] { line.network().esc(1).set_faults({.pd_watchdog_expired = true}); });
   ASSERT_TRUE(r.reached_op) << r.error;

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "master/cia402_program.hpp"
 #include "master/master.hpp"
@@ -85,6 +87,105 @@ TEST(SineRecovery, AFaultedDriveIsEnabledAgainAndMovesOnWithoutAStep) {
   EXPECT_EQ(a6b.statusword & 0x006F, 0x0027) << describe(a6b);
   EXPECT_LE(max_following_after, a6b.following_window) << "following error after the re-enable";
   EXPECT_LE(max_gap_after, a6b.following_window) << "607Ah - 6064h after the re-enable";
+}
+
+// The same fault with the program recovering (vdrive-master op --recover): the outage is counted
+// with its 603Fh code and its length, reported as it starts and ends, and the verdict is that the
+// drive came back, not that it faulted.
+TEST(SineRecovery, RecoveringTheOutageIsCountedWithItsCodeAndTheVerdictIsOk) {
+  test::VirtualLine line({"a6b", "ds5c1"});
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 2u);
+  master.set_mailbox_timeout(20'000'000);
+  SineProgramOptions sine;
+  sine.frequency_hz = 0.5;
+  sine.revolutions = 0.25;
+  sine.motion = 60'000'000'000;
+  sine.recover = true;
+  sine.recovery_bound = 12'000'000'000;  // Err16.0 can be reset 10 s after it occurs
+  SineProgram program(sine);
+  std::vector<DriveRecovery::Event> events;
+  program.on_recovery([&](const DriveResult& r, DriveRecovery::Event e) {
+    EXPECT_EQ(r.station, program.results()[0].station) << "only the overloaded drive";
+    events.push_back(e);
+  });
+  OpRunOptions o;
+  o.drift_frames = 200;
+  o.mailbox_timeout = 20'000'000;
+  o.recover = true;
+  program.attach(o);
+  o.cycles = 14000;
+  fault::FaultInjector faults(line.network(), nullptr);
+  int cycle = 0, fault_id = 0;
+  o.done = [&] {
+    ++cycle;
+    fault::FaultSpec overload;
+    overload.kind = fault::FaultKind::overload;
+    overload.slave = 1;
+    if (cycle == 1500) fault_id = faults.inject(overload, line.clock().now());
+    if (cycle == 1800) faults.clear(fault_id, line.clock().now());
+    return false;
+  };
+  const OpRunResult r = run_to_op(master, o);
+  ASSERT_TRUE(r.reached_op) << r.error;
+  EXPECT_TRUE(r.recovered());
+  const DriveResult& a6b = program.results()[0];
+  EXPECT_EQ(events, (std::vector<DriveRecovery::Event>{DriveRecovery::Event::lost, DriveRecovery::Event::recovered}));
+  EXPECT_EQ(a6b.recovery.outages(), 1u);
+  EXPECT_EQ(a6b.recovery.recoveries(), 1u);
+  ASSERT_EQ(a6b.recovery.codes().size(), 1u);
+  EXPECT_EQ(a6b.recovery.codes()[0].code, 0xFF10);
+  // Not before the 10 s the A6B holds Err16.0, and not much later: the reset follows at once.
+  EXPECT_GE(a6b.recovery.longest(), 9'000'000'000);
+  EXPECT_LE(a6b.recovery.longest(), 11'000'000'000);
+  EXPECT_TRUE(a6b.ok()) << describe(a6b);
+  EXPECT_NE(describe(a6b).find("1 outages, 1 recovered (603Fh FF10h x1)"), std::string::npos) << describe(a6b);
+  EXPECT_EQ(program.results()[1].recovery.outages(), 0u);
+  EXPECT_TRUE(program.results()[1].ok()) << describe(program.results()[1]);
+}
+
+// A drive kept in Fault (the overload never cleared) past the bound did not come back: the
+// verdict fails and says so.
+TEST(SineRecovery, ADriveNotBackWithinTheBoundFails) {
+  test::VirtualLine line({"a6b"});
+  Master master{line, line.clock()};
+  ASSERT_EQ(master.scan(), 1u);
+  master.set_mailbox_timeout(20'000'000);
+  SineProgramOptions sine;
+  sine.frequency_hz = 0.5;
+  sine.revolutions = 0.25;
+  sine.motion = 60'000'000'000;
+  sine.recover = true;
+  sine.recovery_bound = 2'000'000'000;
+  SineProgram program(sine);
+  std::size_t overdue_events = 0;
+  program.on_recovery([&](const DriveResult&, DriveRecovery::Event e) { overdue_events += e == DriveRecovery::Event::overdue; });
+  OpRunOptions o;
+  o.drift_frames = 200;
+  o.mailbox_timeout = 20'000'000;
+  o.recover = true;
+  program.attach(o);
+  o.cycles = 5000;
+  fault::FaultInjector faults(line.network(), nullptr);
+  int cycle = 0;
+  o.done = [&] {
+    if (++cycle == 1500) {
+      fault::FaultSpec overload;
+      overload.kind = fault::FaultKind::overload;
+      overload.slave = 1;
+      faults.inject(overload, line.clock().now());
+    }
+    return false;
+  };
+  const OpRunResult r = run_to_op(master, o);
+  ASSERT_TRUE(r.reached_op) << r.error;
+  const DriveResult& a6b = program.results()[0];
+  EXPECT_EQ(overdue_events, 1u);
+  EXPECT_EQ(a6b.recovery.overdue(), 1u);
+  EXPECT_TRUE(a6b.recovery.out());
+  EXPECT_FALSE(a6b.ok());
+  EXPECT_NE(describe(a6b).find("FAILED (not enabled again within the bound: 1 of 1 outages)"), std::string::npos)
+      << describe(a6b);
 }
 
 }  // namespace
