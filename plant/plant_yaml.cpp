@@ -266,8 +266,9 @@ PlantDescription parse_plant_yaml(std::string_view text, const std::string& orig
     throw PlantYamlError(origin + ":" + std::to_string(e.mark.line + 1) + ":" +
                          std::to_string(e.mark.column + 1) + ": " + e.msg);
   }
+  // A document that is a scalar or a list has no keys: yaml-cpp throws on subscripting it.
+  if (!root.IsMap() || !root["plant"]) r.fail(root, "plant", "missing (top-level key 'plant:')");
   const YAML::Node plant = root["plant"];
-  if (!root.IsMap() || !plant) r.fail(root, "plant", "missing (top-level key 'plant:')");
   r.keys(root, "", {"plant"});
   r.keys(plant, "plant", {"step_s", "substeps", "gravity", "bodies", "joints", "axes"});
   PlantDescription d;
