@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include <array>
+#include <cstdio>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -43,7 +44,22 @@ const std::array<std::string, 3> kProducts = {"a6b", "ds5c1", "ds1000a"};
 
 // An error must say what went wrong and in which file.
 void expect_message(const std::string& what, std::string_view file) {
-  if (what.empty() || what.find(file) == std::string::npos) __builtin_trap();
+  if (!what.empty() && what.find(file) != std::string::npos) return;
+  std::fprintf(stderr, "fuzz_config: an error that does not name %.*s: \"%s\"\n", static_cast<int>(file.size()), file.data(),
+               what.c_str());
+  __builtin_trap();
+}
+
+// ... and, for the YAML readers, at which line: "<file>:<line>".
+void expect_file_line(const std::string& what, std::string_view file) {
+  expect_message(what, file);
+  for (std::size_t at = what.find(file); at != std::string::npos; at = what.find(file, at + 1)) {
+    const std::size_t colon = at + file.size();
+    if (colon + 1 < what.size() && what[colon] == ':' && what[colon + 1] >= '1' && what[colon + 1] <= '9') return;
+  }
+  std::fprintf(stderr, "fuzz_config: an error without the line in %.*s: \"%s\"\n", static_cast<int>(file.size()), file.data(),
+               what.c_str());
+  __builtin_trap();
 }
 
 const vdrive::profile::ProductProfile& product(std::size_t i) {
@@ -142,7 +158,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       try {
         (void)vdrive::scenario::parse_scenario(text, file);
       } catch (const vdrive::scenario::ScenarioError& e) {
-        expect_message(e.what(), file);
+        expect_file_line(e.what(), file);
       }
       break;
     }
@@ -150,7 +166,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       try {
         (void)vdrive::plant::parse_plant_yaml(text, "fuzz_plant.yaml", catalogue);
       } catch (const vdrive::plant::PlantYamlError& e) {
-        expect_message(e.what(), "fuzz_plant.yaml");
+        expect_file_line(e.what(), "fuzz_plant.yaml");
       }
       break;
     case 2:
@@ -161,7 +177,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       try {
         (void)vdrive::machine::parse_network_file(text, "fuzz_network.yaml", base);
       } catch (const vdrive::machine::NetworkFileError& e) {
-        expect_message(e.what(), "fuzz_network.yaml");
+        expect_file_line(e.what(), "fuzz_network.yaml");
       }
       break;
     }
