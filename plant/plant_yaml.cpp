@@ -266,8 +266,12 @@ PlantDescription parse_plant_yaml(std::string_view text, const std::string& orig
     throw PlantYamlError(origin + ":" + std::to_string(e.mark.line + 1) + ":" +
                          std::to_string(e.mark.column + 1) + ": " + e.msg);
   }
+  // An empty document (nothing but comments) has no node to carry a line: it is line 1.
+  if (!root.IsMap() && root.Mark().is_null())
+    throw PlantYamlError(origin + ":1:1: plant: missing (top-level key 'plant:'; the file has no content)");
+  // A document that is a scalar or a list has no keys: yaml-cpp throws on subscripting it.
+  if (!root.IsMap() || !root["plant"]) r.fail(root, "plant", "missing (top-level key 'plant:')");
   const YAML::Node plant = root["plant"];
-  if (!root.IsMap() || !plant) r.fail(root, "plant", "missing (top-level key 'plant:')");
   r.keys(root, "", {"plant"});
   r.keys(plant, "plant", {"step_s", "substeps", "gravity", "bodies", "joints", "axes"});
   PlantDescription d;

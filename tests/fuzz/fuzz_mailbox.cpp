@@ -8,8 +8,11 @@
 //               reach the SDO server and SDO information;
 //   op & 3 == 1: SM1 is read (as a master polls it);
 //   op & 3 == 2: the SM1 repeat request bit is toggled;
-//   op & 3 == 3: AL control = bytes[0] (any value, incl. undefined states).
-// Parameter files go to a temporary directory (1010h "save" may be reached).
+//   op & 3 == 3: AL control = bytes[0] (any value, incl. undefined states); first, op bit2 moves
+//               SM0/SM1 to the product's bootstrap mailbox (as a master does before Init->Boot,
+//               so FoE in Boot is reached) and op bit3 back to the standard mailbox.
+// SM0 writes and SM1 reads go to the mailbox in effect. Parameter files go to a temporary
+// directory (1010h "save" may be reached).
 #include <stdlib.h>
 
 #include <algorithm>
@@ -63,17 +66,35 @@ struct Slave {
     clock.set(0);
     esc.reset();
     firmware.power_on(0);
-    for (int n = 0; n < 2; ++n) {
-      const auto& sm = product.sync_managers.at(static_cast<std::size_t>(n));
-      const auto base = static_cast<std::uint16_t>(0x0800 + 8 * n);
-      write(base, {static_cast<std::uint8_t>(sm.start), static_cast<std::uint8_t>(sm.start >> 8),
-                   static_cast<std::uint8_t>(sm.length), static_cast<std::uint8_t>(sm.length >> 8),
-                   sm.control});
-      write(static_cast<std::uint16_t>(base + 6), {0x01});
-    }
+    mailbox_layout(false);
     write(0x0120, {0x02, 0x00});
     repeat = 0;
   }
+
+  // SM0/SM1 as the standard or (if the product has one) the bootstrap mailbox.
+  void mailbox_layout(bool boot) {
+    const auto& mbx = product.mailbox;
+    if (boot && !(mbx.boot_rx_offset && mbx.boot_rx_size && mbx.boot_tx_offset && mbx.boot_tx_size)) return;
+    for (int n = 0; n < 2; ++n) {
+      const auto& sm = product.sync_managers.at(static_cast<std::size_t>(n));
+      std::uint16_t start = sm.start, length = sm.length;
+      if (boot) {
+        start = n == 0 ? *mbx.boot_rx_offset : *mbx.boot_tx_offset;
+        length = n == 0 ? *mbx.boot_rx_size : *mbx.boot_tx_size;
+      }
+      (n == 0 ? sm0 : sm1) = {start, length};
+      const auto base = static_cast<std::uint16_t>(0x0800 + 8 * n);
+      write(static_cast<std::uint16_t>(base + 6), {0x00});  // the configuration is locked while enabled
+      write(base, {static_cast<std::uint8_t>(start), static_cast<std::uint8_t>(start >> 8),
+                   static_cast<std::uint8_t>(length), static_cast<std::uint8_t>(length >> 8), sm.control});
+      write(static_cast<std::uint16_t>(base + 6), {0x01});
+    }
+  }
+
+  struct Window {
+    std::uint16_t start = 0, length = 0;
+  };
+  Window sm0, sm1;  // the mailbox in effect
 
   vdrive::VirtualClock clock;
   vdrive::profile::ProductProfile product;
@@ -101,8 +122,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size == 0) return 0;
   Slave& s = *slaves()[data[0] % 3];
   s.reset();
-  const auto& sm0 = s.product.sync_managers.at(0);
-  const auto& sm1 = s.product.sync_managers.at(1);
+  const Slave::Window& sm0 = s.sm0;
+  const Slave::Window& sm1 = s.sm1;
   std::size_t at = 1;
   while (at + 2 <= size) {
     const std::uint8_t op = data[at];
@@ -129,7 +150,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         s.repeat ^= 0x02;
         s.write(0x080E, {static_cast<std::uint8_t>(0x01 | s.repeat)});
         break;
-      case 3: s.write(0x0120, {len > 0 ? data[at] : std::uint8_t{0x02}, 0x00}); break;
+      case 3:
+        if (op & 0x0C) s.mailbox_layout((op & 0x04) != 0);
+        s.write(0x0120, {len > 0 ? data[at] : std::uint8_t{0x02}, 0x00});
+        break;
     }
     at += len;
   }

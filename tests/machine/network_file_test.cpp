@@ -54,6 +54,14 @@ TEST(NetworkFile, AnUnknownKeyGetsASuggestion) {
   EXPECT_NE(e.find("n.yaml:2: slaves[0]: unknown key 'parnet', did you mean 'parent'?"), std::string::npos) << e;
 }
 
+// Found by fuzz_config: an empty document was refused without a line.
+TEST(NetworkFile, AnEmptyFileIsRefusedAtLine1) {
+  for (const char* text : {"", "# nothing but a comment\n"}) {
+    const std::string e = error_of(text);
+    EXPECT_EQ(e.rfind("n.yaml:1: no content: expected a mapping with 'slaves'", 0), 0u) << e;
+  }
+}
+
 TEST(NetworkFile, AnUnknownDeviceListsTheProducts) {
   const std::string e = error_of("slaves:\n  - {device: a7b}\n");
   EXPECT_NE(e.find("n.yaml:2: slaves[0].device:"), std::string::npos) << e;

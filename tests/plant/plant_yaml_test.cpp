@@ -88,6 +88,16 @@ TEST(PlantYaml, ErrorsNameFileLineAndField) {
             "p.yaml:4:21: plant.axes[0].transmission.stiffness: must be > 0 when backlash is set");
 }
 
+// Found by fuzz_config: a document that is a scalar or a list escaped as yaml-cpp's BadSubscript,
+// and an empty one was refused without a line.
+TEST(PlantYaml, ADocumentThatIsNoMappingIsAnError) {
+  for (const char* yaml : {"42\n", "- plant\n", "plant\n", "# nothing but a comment\n", ""}) {
+    const std::string error = error_of(yaml);
+    EXPECT_EQ(error.rfind("p.yaml:1:", 0), 0u) << error;
+    EXPECT_NE(error.find("plant: missing (top-level key 'plant:'"), std::string::npos) << error;
+  }
+}
+
 TEST(PlantYaml, MissingFileIsAnError) {
   EXPECT_THROW(load_plant_file("/nonexistent/plant.yaml"), PlantYamlError);
 }

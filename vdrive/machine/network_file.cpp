@@ -120,6 +120,9 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
   } catch (const YAML::Exception& e) {
     throw NetworkFileError(fmt::format("{}:{}: not YAML: {}", file, e.mark.line + 1, e.msg));
   }
+  // An empty document (nothing but comments) has no node to carry a line: it is line 1.
+  if (!root.IsMap() && root.Mark().is_null())
+    throw NetworkFileError(fmt::format("{}:1: no content: expected a mapping with 'slaves' (and 'wires', 'signals')", file));
   if (!root.IsMap()) r.fail(root, "expected a mapping with 'slaves' (and 'wires', 'signals')");
   r.only_keys(root, "(top level)", {"slaves", "wires", "signals", "faults"});
   const YAML::Node slaves = root["slaves"];

@@ -9,6 +9,7 @@
 
 #include "vdrive/profile/embedded_profiles.hpp"
 #include "vdrive/profile/profile_sections.hpp"
+#include "vdrive/profile/profile_text.hpp"
 #include "vdrive/profile/yaml_map_reader.hpp"
 
 namespace vdrive::profile {
@@ -291,6 +292,13 @@ std::vector<std::string> known_products() {
   for (const auto& e : embedded_profiles()) ids.emplace_back(e.id);
   std::sort(ids.begin(), ids.end());
   return ids;
+}
+
+ProductProfile parse_profile_text(std::string_view id, const std::string& profile_yaml, std::string_view alarms_yaml,
+                                  std::string_view motors_yaml, const std::string& dir) {
+  ProductProfile p = parse_profile(id, profile_yaml, dir + "/profile.yaml");
+  add_tables(p, alarms_yaml, motors_yaml, dir);
+  return p;
 }
 
 ProductProfile load_profile(std::string_view id, const std::string& profile_dir) {
