@@ -38,6 +38,16 @@ inline SlaveRef parse_slave_ref(std::string_view text) {
   return {hex ? SlaveRef::Kind::address : SlaveRef::Kind::position, static_cast<std::uint16_t>(v)};
 }
 
+// What is wrong with `text` as a slave reference, or "" when it is one: for option validators.
+inline std::string slave_ref_problem(std::string_view text) {
+  try {
+    (void)parse_slave_ref(text);
+    return {};
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+}
+
 inline std::string hex_address(std::uint16_t a) {
   static constexpr char kDigits[] = "0123456789ABCDEF";
   std::string s = "0x0000";

@@ -5,16 +5,7 @@
 namespace vdrive::master::tool {
 
 CLI::Option* add_slave_option(CLI::App* cmd, std::string& text) {
-  const CLI::Validator slave_ref(
-      [](std::string& value) -> std::string {
-        try {
-          (void)ecat::parse_slave_ref(value);
-          return {};
-        } catch (const std::invalid_argument& e) {
-          return e.what();
-        }
-      },
-      "N|0xADDR");
+  const CLI::Validator slave_ref([](std::string& value) { return ecat::slave_ref_problem(value); }, "N|0xADDR");
   return cmd->add_option("--slave", text, "The slave: its position as scan prints it (1 = first) or its station address (0x1001)")
       ->required()
       ->check(slave_ref);

@@ -44,6 +44,12 @@ TEST(SlaveRef, RefusalsSayWhatIsAccepted) {
   EXPECT_THAT(refusal("65536"), HasSubstr("names no slave"));
 }
 
+TEST(SlaveRef, AProblemIsEmptyForAReference) {
+  EXPECT_EQ(slave_ref_problem("0x1001"), "");
+  EXPECT_EQ(slave_ref_problem("3"), "");
+  EXPECT_THAT(slave_ref_problem("0"), HasSubstr("positions count from 1"));
+}
+
 TEST(SlaveRef, FindsTheSlaveByPositionOrAddress) {
   const std::array<std::uint16_t, 3> stations{0x1001, 0x1002, 0x1003};
   EXPECT_EQ(slave_index(parse_slave_ref("1"), stations), 0u);

@@ -10,16 +10,7 @@ namespace vdrive::cli {
 
 void add_fault_inject_options(CLI::App* inj, FaultInjectOptions& o) {
   inj->add_option("kind", o.kind, "Fault kind")->required();
-  const CLI::Validator slave_ref(
-      [](std::string& value) -> std::string {
-        try {
-          (void)ecat::parse_slave_ref(value);
-          return {};
-        } catch (const std::invalid_argument& e) {
-          return e.what();
-        }
-      },
-      "N|0xADDR");
+  const CLI::Validator slave_ref([](std::string& value) { return ecat::slave_ref_problem(value); }, "N|0xADDR");
   inj->add_option("--slave", o.slave,
                   "The slave: its position in cable order (1 = first) or its station address (0x1001) (esc, mailbox, "
                   "drive, plant faults; link_down)")
