@@ -23,10 +23,15 @@ struct SlaveRef {
 
 inline constexpr std::string_view kSlaveRefForms = "a position (1 = first in cable order) or a station address such as 0x1001";
 
+// Whether `text` is written as a station address ("0x..."), not as a position.
+inline bool is_address_text(std::string_view text) {
+  return text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+}
+
 // "2" or "0x1002"; anything else (including 0: positions count from 1) is std::invalid_argument
 // with a message that says what is accepted.
 inline SlaveRef parse_slave_ref(std::string_view text) {
-  const bool hex = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+  const bool hex = is_address_text(text);
   const std::string_view digits = hex ? text.substr(2) : text;
   unsigned long v = 0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v, hex ? 16 : 10);

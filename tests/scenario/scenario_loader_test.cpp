@@ -157,6 +157,21 @@ TEST(ScenarioLoader, LinkDownNamesACableByTheSlaveItLeadsIntoOrByAPort) {
             std::string::npos);
 }
 
+// A fault's slave by position or by the station address the master sets; other values are refused
+// at the field.
+TEST(ScenarioLoader, AFaultsSlaveIsAPositionOrAStationAddress) {
+  const std::string head = "duration: 1s\nsegment:\n  slaves:\n    - product: a6b\n    - product: ds5c1\n";
+  const Scenario s = parse_scenario(head + "timeline:\n  - {at: 1ms, fault: {kind: jam, slave: 0x1002}}\n"
+                                           "  - {at: 2ms, fault: {kind: jam, slave: 2}}\n", "t.yaml");
+  EXPECT_EQ(std::get<FaultAction>(s.steps[0].action).fault.station, 0x1002);
+  EXPECT_EQ(std::get<FaultAction>(s.steps[0].action).fault.slave, 0);
+  EXPECT_EQ(std::get<FaultAction>(s.steps[1].action).fault.slave, 2);
+  EXPECT_NE(error_of(head + "timeline:\n  - {at: 1s, fault: {kind: jam, slave: 0x}}\n").find("timeline[0].fault.slave"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "timeline:\n  - {at: 1s, fault: {kind: jam, slave: [1]}}\n").find("timeline[0].fault.slave"),
+            std::string::npos);
+}
+
 TEST(ScenarioLoader, PlantFilesAreReadBesideTheScenario) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("vdrive-scenario-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir / "plants");

@@ -63,16 +63,16 @@ FaultSpec read_fault(FaultFieldSource& src, int max_slave) {
   const FaultKindInfo& i = info(f.kind);
   if (i.layer != Layer::wire || f.kind == K::link_down) {
     if (!src.has("slave")) src.missing("slave", fmt::format("kind \"{}\" acts on one slave (1 = first)", kind));
-    if (const std::optional<std::string> address = src.address_text("slave")) {
+    if (const std::optional<std::string> written = src.address_text("slave")) {
+      ecat::SlaveRef ref;
       try {
-        const ecat::SlaveRef ref = ecat::parse_slave_ref(*address);
-        if (!ref.is_address() && ref.value > max_slave)
-          src.out_of_range("slave", fmt::format("is out of range (1..{})", max_slave));
-        if (ref.is_address()) f.station = ref.value;
-        else f.slave = ref.value;
+        ref = ecat::parse_slave_ref(*written);
       } catch (const std::invalid_argument& e) {
         src.invalid("slave", e.what());
       }
+      if (ref.is_address()) f.station = ref.value;
+      else if (ref.value > max_slave) src.out_of_range("slave", fmt::format("is out of range (1..{})", max_slave));
+      else f.slave = ref.value;
     } else {
       f.slave = static_cast<int>(src.integer("slave", 1, max_slave));
     }

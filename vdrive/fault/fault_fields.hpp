@@ -25,8 +25,8 @@ public:
   virtual double real(std::string_view field) = 0;
   virtual std::int64_t integer(std::string_view field, std::int64_t min, std::int64_t max) = 0;
   virtual Nanos time(std::string_view field) = 0;
-  // The field's text when it is written as a station address ("0x1002") where a format tells text
-  // from numbers; nothing otherwise (it is then read as a number).
+  // The field as text when it may name a station address: YAML's "0x..." scalars, JSON's strings
+  // (which may also hold a position); nothing otherwise, and the field is read with integer().
   virtual std::optional<std::string> address_text(std::string_view field) = 0;
   // Errors: a field the kind needs is absent (`why`: what it is for); a value that is not one of
   // the accepted ones (`what` says which are); a value that breaks a rule such as a range.

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "common/time_text.hpp"
+#include "ethercat/slave_ref.hpp"
 #include "vdrive/fault/fault_fields.hpp"
 #include "vdrive/machine/network_file.hpp"
 
@@ -44,10 +45,8 @@ public:
   }
   std::optional<std::string> address_text(std::string_view f) override {
     const YAML::Node v = at(f);
-    if (!v.IsScalar()) return std::nullopt;
-    const std::string& written = v.Scalar();
-    if (written.size() > 2 && written[0] == '0' && (written[1] == 'x' || written[1] == 'X')) return written;
-    return std::nullopt;
+    if (!v.IsScalar() || !ecat::is_address_text(v.Scalar())) return std::nullopt;
+    return v.Scalar();
   }
   Nanos time(std::string_view f) override {
     const YAML::Node v = at(f);

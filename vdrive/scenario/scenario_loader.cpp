@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "ethercat/slave_ref.hpp"
 #include "plant/plant_yaml.hpp"
 #include "vdrive/drive/product_plant.hpp"
 #include "vdrive/fault/fault_fields.hpp"
@@ -254,9 +255,9 @@ public:
   std::int64_t integer(std::string_view field, std::int64_t min, std::int64_t max) override { return m_.integer(field, min, max); }
   Nanos time(std::string_view field) override { return m_.time(field); }
   std::optional<std::string> address_text(std::string_view field) override {
-    const std::string written = m_.string(field);
-    if (written.size() > 2 && written[0] == '0' && (written[1] == 'x' || written[1] == 'X')) return written;
-    return std::nullopt;
+    const YAML::Node v = m_.get(field);  // a value that is no text is left to integer() to refuse
+    if (!v.IsScalar() || !ecat::is_address_text(v.Scalar())) return std::nullopt;
+    return v.Scalar();
   }
   [[noreturn]] void missing(std::string_view field, std::string_view why) override {
     m_.fail("", fmt::format("missing \"{}\": {}", field, why));
