@@ -17,8 +17,7 @@ DriveRecovery::Event DriveRecovery::update(Nanos now, bool enabled, std::uint16_
   } else if (enabled) {
     last_duration_ = now - out_since_;
     longest_ = std::max(longest_, last_duration_);
-    if (!out_counted_) count(code_);
-    out_counted_ = false;
+    if (!out_overdue_) count(code_);  // an overdue outage was counted when it became overdue
     out_since_ = -1;
     ++recoveries_;
     event = Event::recovered;
@@ -29,7 +28,6 @@ DriveRecovery::Event DriveRecovery::update(Nanos now, bool enabled, std::uint16_
       out_overdue_ = true;
       ++overdue_;
       count(code_);
-      out_counted_ = true;
       longest_ = std::max(longest_, now - out_since_);
       event = Event::overdue;
     }

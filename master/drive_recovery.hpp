@@ -47,8 +47,7 @@ private:
   Nanos bound_ = 10'000'000'000;
   bool was_enabled_ = false;
   Nanos out_since_ = -1;
-  bool out_counted_ = false;    // the outage's code has been counted
-  bool out_overdue_ = false;
+  bool out_overdue_ = false;    // the current outage passed the bound (and its code is counted)
   std::uint16_t code_ = 0;
   std::uint64_t outages_ = 0, recoveries_ = 0, overdue_ = 0, other_codes_ = 0;
   Nanos longest_ = 0, last_duration_ = 0;
