@@ -197,6 +197,31 @@ TEST(HostStallRecords, TheRingKeepsTheLastOnesWholeAndTheCounterAll) {
   EXPECT_EQ(after_stall(std::nullopt), "");
 }
 
+// What the CI run of 2026-11-27 saw: an 80 ms stall, then short ones while the host was still busy,
+// recorded after the loop sampled the alarm a reader names. The fault follows the long one.
+TEST(HostStallRecords, AFaultFollowsTheLongestStallBeforeItNotOneRecordedAfter) {
+  HostStalls stalls;
+  const auto add = [&](Nanos time, Nanos length) {
+    HostStall s;
+    s.time = time;
+    s.length = length;
+    s.threshold = kMs;
+    stalls.record(s);
+  };
+  add(1000 * kMs, 2 * kMs);
+  add(5000 * kMs, 80 * kMs);
+  add(5000 * kMs + 100'000, 3 * kMs);
+  add(5100 * kMs, 2 * kMs);  // after the sample below
+  const Nanos sampled = 5050 * kMs;
+  EXPECT_EQ(after_stall(stalls.just_before(sampled)), " after a host stall of 80.0 ms");
+  EXPECT_EQ(after_stall(stalls.just_before(5000 * kMs)), " after a host stall of 80.0 ms") << "at the same instant";
+  EXPECT_EQ(after_stall(stalls.just_before(5950 * kMs)), " after a host stall of 80.0 ms");
+  EXPECT_EQ(after_stall(stalls.just_before(6050 * kMs)), " after a host stall of 2.0 ms") << "only the last is within a second";
+  EXPECT_FALSE(stalls.just_before(7000 * kMs));
+  EXPECT_EQ(after_stall(stalls.just_before(1500 * kMs)), " after a host stall of 2.0 ms");
+  EXPECT_FALSE(stalls.just_before(999 * kMs)) << "before every stall";
+}
+
 TEST(HostStallRecords, TheDescriptionFitsAFixedBufferAndListsSlavesAsRanges) {
   HostStall s;
   s.length = 3'460'000;

@@ -134,9 +134,19 @@ std::optional<HostStall> HostStalls::get(std::uint64_t number) const {
 }
 
 std::optional<HostStall> HostStalls::just_before(Nanos now) const {
-  std::optional<HostStall> s = latest();
-  if (s && now >= s->time && now - s->time <= kStallAftermath) return s;
-  return std::nullopt;
+  // A reader's `now` is often a sample the loop took a little earlier, and the loop may have
+  // recorded further stalls since: the ones after `now` are not what the fault followed. Of those
+  // before it, the longest is the one worth naming (a long stall is often followed by short ones
+  // while the host is still busy).
+  std::optional<HostStall> found;
+  const std::uint64_t count = this->count();
+  for (std::uint64_t n = count; n > 0 && count - n < kLog; --n) {
+    const std::optional<HostStall> s = get(n);
+    if (!s || s->time > now) continue;
+    if (now - s->time > kStallAftermath) break;  // older records ended earlier still
+    if (!found || s->length > found->length) found = s;
+  }
+  return found;
 }
 
 std::size_t describe(const HostStall& s, std::span<char> out) {

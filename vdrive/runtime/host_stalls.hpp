@@ -81,7 +81,8 @@ public:
   // Record `number` (1-based) if the ring still holds it.
   std::optional<HostStall> get(std::uint64_t number) const;
   std::optional<HostStall> latest() const { return get(count()); }
-  // The latest stall if it ended at most kStallAftermath before `now` (same clock as the loop's).
+  // The longest of the stalls that ended at most kStallAftermath before `now` and not after it
+  // (same clock as the loop's); none if there is none.
   std::optional<HostStall> just_before(Nanos now) const;
 
 private:
