@@ -178,12 +178,12 @@ void watch(const WatchOptions& o) {
 }
 
 // The control side: one request, its reply, the exit code a refusal maps to.
-struct ControlTarget {
+struct DdsTarget {
   std::optional<int> domain;
   double timeout_s = 5.0;
 };
 
-control::ControlReply request(const ControlTarget& t, const nlohmann::json& req) {
+control::ControlReply dds_request(const DdsTarget& t, const nlohmann::json& req) {
   const int domain = telemetry_domain(t.domain);
   const std::unique_ptr<telemetry::TelemetryClient> client = open_client(domain);
   std::optional<control::ControlReply> reply;
@@ -204,15 +204,15 @@ control::ControlReply request(const ControlTarget& t, const nlohmann::json& req)
   throw CliError(kExitFailure, reply->error);
 }
 
-void inject(const ControlTarget& t, const FaultInjectOptions& o) {
-  const control::ControlReply r = request(t, {{"op", "inject"}, {"fault", fault_json(o)}});
+void dds_inject(const DdsTarget& t, const FaultInjectOptions& o) {
+  const control::ControlReply r = dds_request(t, {{"op", "inject"}, {"fault", fault_json(o)}});
   if (r.id != 0) fmt::print("fault {} injected\n", r.id);
   else fmt::print("one-shot fault injected\n");
 }
 
-void clear(const ControlTarget& t, const std::string& what) {
+void dds_clear(const DdsTarget& t, const std::string& what) {
   if (what == "all") {
-    const control::ControlReply r = request(t, {{"op", "clear_all"}});
+    const control::ControlReply r = dds_request(t, {{"op", "clear_all"}});
     fmt::print("{} fault(s) cleared\n", r.cleared);
     return;
   }
@@ -224,11 +224,11 @@ void clear(const ControlTarget& t, const std::string& what) {
   } catch (const std::exception&) {
     throw CliError(kExitBadArguments, fmt::format("telemetry clear '{}': expected a fault id (1, 2, ...) or 'all'", what));
   }
-  request(t, {{"op", "clear"}, {"id", id}});
+  dds_request(t, {{"op", "clear"}, {"id", id}});
   fmt::print("fault {} cleared\n", id);
 }
 
-void add_target(CLI::App* cmd, ControlTarget& t) {
+void add_dds_target(CLI::App* cmd, DdsTarget& t) {
   cmd->add_option("--domain", t.domain, "DDS domain id 0..232 (default $ROS_DOMAIN_ID, else 0)");
   cmd->add_option("--timeout", t.timeout_s, "Seconds to wait for a vdrive to answer (default 5)")->check(CLI::Range(0.1, 3600.0));
 }
@@ -256,27 +256,27 @@ void add_telemetry_command(CLI::App& app) {
     if (cmd->get_subcommands().empty()) watch(*w);
   });
 
-  auto t = std::make_shared<ControlTarget>();
+  auto t = std::make_shared<DdsTarget>();
   auto o = std::make_shared<FaultInjectOptions>();
   CLI::App* inj = cmd->add_subcommand("inject", "Start a fault through the control topic (kinds: vdrive fault kinds)");
-  add_target(inj, *t);
+  add_dds_target(inj, *t);
   add_fault_inject_options(inj, *o);
-  inj->callback([t, o] { inject(*t, *o); });
+  inj->callback([t, o] { dds_inject(*t, *o); });
 
   auto what = std::make_shared<std::string>();
   CLI::App* clr = cmd->add_subcommand("clear", "End a fault by its id, or 'all'");
-  add_target(clr, *t);
+  add_dds_target(clr, *t);
   clr->add_option("id", *what, "Fault id, or all")->required();
-  clr->callback([t, what] { clear(*t, *what); });
+  clr->callback([t, what] { dds_clear(*t, *what); });
 
   auto slave = std::make_shared<int>(0);
   auto load = std::make_shared<double>(0.0);
   CLI::App* ps = cmd->add_subcommand("plant-set", "Change a plant parameter at run time: the external load on an axis");
-  add_target(ps, *t);
+  add_dds_target(ps, *t);
   ps->add_option("--slave", *slave, "Slave in cable order, 1 = first")->required()->check(CLI::Range(1, 65535));
   ps->add_option("--external-load", *load, "External force/torque on the load, N or N m (0: none)")->required();
   ps->callback([t, slave, load] {
-    request(*t, {{"op", "plant_set"}, {"slave", *slave}, {"external_load", *load}});
+    dds_request(*t, {{"op", "plant_set"}, {"slave", *slave}, {"external_load", *load}});
     fmt::print("slave {}: external load {:g}\n", *slave, *load);
   });
 }
