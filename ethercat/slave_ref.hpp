@@ -36,7 +36,7 @@ inline SlaveRef parse_slave_ref(std::string_view text) {
   unsigned long v = 0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v, hex ? 16 : 10);
   if (digits.empty() || ec != std::errc{} || end != digits.data() + digits.size() || v > 0xFFFF)
-    throw std::invalid_argument("'" + std::string(text) + "' names no slave: give " + std::string(kSlaveRefForms));
+    throw std::invalid_argument(std::string("'").append(text).append("' names no slave: give ").append(kSlaveRefForms));
   if (!hex && v == 0)
     throw std::invalid_argument("slave 0: positions count from 1 (1 = the first slave in cable order)");
   if (hex && v == 0) throw std::invalid_argument("station address 0x0000 is no slave's (the master sets addresses from 0x0001)");
@@ -65,24 +65,33 @@ inline std::string hex_address(std::uint16_t a) {
 inline std::size_t slave_index(const SlaveRef& r, std::span<const std::uint16_t> stations) {
   if (!r.is_address()) {
     if (r.value >= 1 && r.value <= stations.size()) return r.value - 1u;
-    throw std::invalid_argument("there is no slave " + std::to_string(r.value) + ": the line has " +
-                                (stations.empty() ? std::string("none") : "slaves 1 to " + std::to_string(stations.size())));
+    throw std::invalid_argument(std::string("there is no slave ")
+                                    .append(std::to_string(r.value))
+                                    .append(": the line has ")
+                                    .append(stations.empty() ? std::string("none") : "slaves 1 to " + std::to_string(stations.size())));
   }
   for (std::size_t i = 0; i < stations.size(); ++i)
     if (stations[i] == r.value) return i;
+  bool any = false;
+  for (const std::uint16_t a : stations) any = any || a != 0;
+  if (!stations.empty() && !any)
+    throw std::invalid_argument(std::string("no slave has station address ")
+                                    .append(hex_address(r.value))
+                                    .append(" (no master has set station addresses yet; give the position)"));
   std::string have;
   for (std::size_t i = 0; i < stations.size() && i < 8; ++i) have += (i ? ", " : "") + hex_address(stations[i]);
   if (stations.size() > 8) have += ", ...";
-  throw std::invalid_argument("no slave has station address " + hex_address(r.value) +
-                              (have.empty() ? std::string(" (the line has no slaves)") : " (the line has " + have + ")"));
+  throw std::invalid_argument(std::string("no slave has station address ")
+                                  .append(hex_address(r.value))
+                                  .append(have.empty() ? std::string(" (the line has no slaves)") : " (the line has " + have + ")"));
 }
 
 // "slave 2 @0x1002 ds5c1"; the address is left out while the master has set none (0), the product
 // when it is empty.
 inline std::string slave_label(std::size_t index, std::uint16_t station, std::string_view product) {
-  std::string s = "slave " + std::to_string(index + 1);
-  if (station != 0) s += " @" + hex_address(station);
-  if (!product.empty()) s += " " + std::string(product);
+  std::string s = std::string("slave ").append(std::to_string(index + 1));
+  if (station != 0) s.append(" @").append(hex_address(station));
+  if (!product.empty()) s.append(" ").append(product);
   return s;
 }
 

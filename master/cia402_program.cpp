@@ -38,7 +38,9 @@ SineProgram::SineProgram(const SineProgramOptions& options) : options_(options) 
 void SineProgram::preop(Master& master) {
   master_ = &master;
   channels_.assign(master.slaves().size(), Channel{});
-  DriveResult blank{.recover = options_.recover, .recovery = DriveRecovery(options_.recovery_bound)};
+  DriveResult blank;
+  blank.recover = options_.recover;
+  blank.recovery = DriveRecovery(options_.recovery_bound);
   results_.assign(master.slaves().size(), blank);
   for (std::size_t i = 0; i < master.slaves().size(); ++i) {
     DriveResult& r = results_[i];

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -234,6 +235,24 @@ TEST_F(PlotCommand, BadInputIsABadArgumentNamingTheFile) {
 
   std::ofstream(path("bad_value.csv")) << "time_ns,slave,position,velocity,torque,following_error\n1,1,2,fast,4,5\n";
   expect_error(vdrive({"plot", path("bad_value.csv")}), 2, "bad_value.csv:2: velocity 'fast' is not a number");
+}
+
+TEST_F(PlotCommand, ASlaveIsAPositionOrItsStationAddress) {
+  // The scenario's master gave the slaves 0x1001.. (the trace's station column).
+  ProcessResult r = vdrive({"plot", path("csp.csv"), "-o", path("by_address.png"), "--slave", "0x1002"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = vdrive({"plot", path("csp.csv"), "-o", path("by_position.png"), "--slave", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream a(path("by_address.png"), std::ios::binary), b(path("by_position.png"), std::ios::binary);
+  const std::string by_address{std::istreambuf_iterator<char>(a), {}}, by_position{std::istreambuf_iterator<char>(b), {}};
+  EXPECT_FALSE(by_address.empty());
+  EXPECT_TRUE(by_address == by_position) << "the same slave, the same plot";
+
+  expect_error(vdrive({"plot", path("csp.csv"), "--slave", "0x1009"}), 2, "has slave 1 @0x1001, slave 2 @0x1002, slave 3 @0x1003");
+  std::ofstream(path("no_station.csv")) << "time_ns,slave,position,velocity,torque,following_error\n1,1,2,3,4,5\n";
+  expect_error(vdrive({"plot", path("no_station.csv"), "--slave", "0x1001"}), 2,
+               "has slave 1 (no station addresses: its slaves had none, or it has no station column)");
+  expect_error(vdrive({"plot", path("csp.csv"), "--slave", "0x10G1"}), 2, "'0x10G1' names no slave");
 }
 
 TEST_F(PlotCommand, BadOptionsAreNamed) {

@@ -67,6 +67,14 @@ TEST(SlaveRef, FindsTheSlaveByPositionOrAddress) {
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "no slave has station address 0x1009 (the line has 0x1001, 0x1002, 0x1003)");
   }
+  const std::array<std::uint16_t, 2> unset{0, 0};
+  EXPECT_EQ(slave_index(parse_slave_ref("2"), unset), 1u) << "a position needs no address";
+  try {
+    (void)slave_index(parse_slave_ref("0x1001"), unset);
+    ADD_FAILURE() << "0x1001 found before any address was set";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "no slave has station address 0x1001 (no master has set station addresses yet; give the position)");
+  }
 }
 
 TEST(SlaveRef, TheLabelHasPositionAddressAndProduct) {

@@ -7,27 +7,18 @@
 #include <vector>
 
 #include "ethercat/registers.hpp"
-#include "tests/support/runtime_test_support.hpp"
+#include "tests/support/station_addresses.hpp"
 #include "vdrive/fault/fault_injector.hpp"
 #include "vdrive/network/network.hpp"
 
 namespace vdrive::fault {
 namespace {
 
-constexpr std::uint8_t kApwr = 0x02;
-
 class FaultByAddress : public ::testing::Test {
 protected:
-  // As a master does at scan: an APWR of the station address to each position.
   void set_addresses(std::uint16_t first) {
-    for (std::size_t i = 0; i < net_.size(); ++i) {
-      const auto a = static_cast<std::uint16_t>(first + i);
-      auto frame = test::ethercat_frame(kApwr, static_cast<std::uint16_t>(-static_cast<int>(i)), ecat::reg::kStationAddress,
-                                        std::vector<std::uint8_t>{static_cast<std::uint8_t>(a & 0xFF), static_cast<std::uint8_t>(a >> 8)});
-      clock_.advance(100'000);
-      ASSERT_TRUE(net_.process_frame(frame, clock_.now()));
-      ASSERT_EQ(test::first_wkc(frame), 1);
-    }
+    clock_.advance(100'000);
+    ASSERT_TRUE(test::assign_station_addresses(net_, clock_.now(), first));
   }
   FaultSpec overload_at(std::uint16_t station) {
     FaultSpec s;

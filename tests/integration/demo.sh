@@ -27,9 +27,9 @@ if ! grep -q '^host stalls: none$' "$OUT"; then grep -qE '^host stall [0-9.]+ ms
 # Live telemetry over DDS (on by default): each drive seen in Op in csp (mode 8), and moving
 # (two different positions of one slave).
 for s in 1 2 3; do
-  grep -qE "^telemetry: t=[0-9.]+s slave $s Op .* mode=8 " "$OUT" || fail "no telemetry line of slave $s in Op, csp"
+  grep -qE "^telemetry: t=[0-9.]+s slave $s @0x100$s Op .* mode=8 " "$OUT" || fail "no telemetry line of slave $s in Op, csp"
 done
-positions=$(grep -E "^telemetry: .* slave 2 Op .* mode=8 " "$OUT" | sed -n 's/.* pos=\(-\?[0-9]*\) .*/\1/p' | sort -u | wc -l)
+positions=$(grep -E "^telemetry: .* slave 2 @0x1002 Op .* mode=8 " "$OUT" | sed -n 's/.* pos=\(-\?[0-9]*\) .*/\1/p' | sort -u | wc -l)
 [ "$positions" -ge 2 ] || fail "telemetry does not show slave 2 moving ($positions position(s))"
 grep -q "MADLN15BE" "$OUT" && grep -q "DS5C1" "$OUT" && grep -q "DS1000A-EC" "$OUT" || fail "drive names missing"
 ip link show "vdrive-m$SUFFIX" >/dev/null 2>&1 && fail "veth pair left behind"

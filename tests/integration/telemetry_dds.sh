@@ -6,7 +6,9 @@
 # until the requests are done and the master has finished, then gets Ctrl-C (each request client
 # is a new DDS participant whose discovery can take a second or more: a fixed window missed
 # events on a busy machine). While the axes move, `vdrive telemetry inject encoder_error --slave 1` goes through the
-# control topic; then `plant-set` changes slave 2's external load, and refusals are checked.
+# control topic; then `plant-set` changes slave 2's external load, by position and by its station
+# address (0x1002), a subscriber with `--slave 0x1002` gets slave 2's rows only, and refusals are
+# checked.
 # Asserts: per-axis samples at the configured rate (time stamps 10 ms apart; per axis count within
 # the subscription window +-2 samples of 100 Hz; a rate check, not a performance one), the axes
 # move (position changes), the fault takes effect (603Fh of slave 1 becomes non-zero in Op in the
@@ -54,7 +56,18 @@ echo "$out"
 out=$(tlm plant-set --slave 2 --external-load 0.25 2>&1) || fail "telemetry plant-set failed: $out"
 [ "$out" = "slave 2: external load 0.25" ] || fail "plant-set printed '$out'"
 out=$(tlm plant-set --slave 7 --external-load 1 2>&1); rc=$?
-[ $rc -eq 2 ] && echo "$out" | grep -q "no slave 7" || fail "plant-set on a missing slave: exit $rc, '$out'"
+[ $rc -eq 2 ] && echo "$out" | grep -q "there is no slave 7" || fail "plant-set on a missing slave: exit $rc, '$out'"
+# A slave by its station address: the master gave slave 2 0x1002.
+out=$(tlm plant-set --slave 0x1002 --external-load 0.5 2>&1) || fail "telemetry plant-set by address failed: $out"
+[ "$out" = "slave 0x1002: external load 0.5" ] || fail "plant-set by address printed '$out'"
+out=$(tlm plant-set --slave 0x1007 --external-load 1 2>&1); rc=$?
+[ $rc -eq 2 ] && echo "$out" | grep -q "no slave has station address 0x1007 (the line has 0x1001, 0x1002)" \
+  || fail "plant-set on a missing address: exit $rc, '$out'"
+ip netns exec "$NS" "$VDRIVE" telemetry --domain "$DOMAIN" --slave 0x1002 --count 20 --duration 10 --csv "$WORK/by_address.csv" -q \
+  || fail "telemetry --slave 0x1002 exited $?"
+rows=$(awk -F, 'NR > 1' "$WORK/by_address.csv" | wc -l)
+others=$(awk -F, 'NR > 1 && ($2 != 2 || $NF != 4098)' "$WORK/by_address.csv" | wc -l)
+[ "$rows" -eq 20 ] && [ "$others" -eq 0 ] || { cat "$WORK/by_address.csv"; fail "--slave 0x1002: $rows rows, $others not slave 2 at 0x1002"; }
 out=$(tlm inject no_such_kind 2>&1); rc=$?
 [ $rc -eq 2 ] && echo "$out" | grep -q 'unknown fault kind "no_such_kind"' || fail "unknown fault kind: exit $rc, '$out'"
 wait "$MASTER_PID"
@@ -86,6 +99,7 @@ printf 'slave 1 603Fh after the fault: 0x%04X\n' "$alarm"
 grep -q ",1,fault_injected,1,0,\"fault 1 encoder_error started\"" "$WORK/events.csv" || { cat "$WORK/events.csv"; fail "no fault_injected event"; }
 grep -q ",1,alarm_raised,$alarm,0," "$WORK/events.csv" || { cat "$WORK/events.csv"; fail "no alarm_raised event with 603Fh $alarm"; }
 grep -q ',2,plant_set,0,0,"external load 0.25"' "$WORK/events.csv" || { cat "$WORK/events.csv"; fail "no plant_set event"; }
+grep -q ',2,plant_set,0,0,"external load 0.5"' "$WORK/events.csv" || { cat "$WORK/events.csv"; fail "no plant_set event for 0x1002"; }
 grep -q ",1,al_state,8,4," "$WORK/events.csv" || { cat "$WORK/events.csv"; fail "no AL state event for Op"; }
 
 # Nobody in another domain: exit 1, naming the topic and the domain.

@@ -79,7 +79,7 @@ TEST_F(ScenarioRuns, TraceHasOneRowPerSlaveAndCycleWithTheDrivesValues) {
   std::ifstream in(dir_ / "t.csv");
   std::string header, row, last;
   std::getline(in, header);
-  EXPECT_EQ(header, "time_ns,slave,al_state,al_status_code,statusword,controlword,mode,position,velocity,torque,following_error,error_code");
+  EXPECT_EQ(header, "time_ns,slave,al_state,al_status_code,statusword,controlword,mode,position,velocity,torque,following_error,error_code,station");
   std::size_t rows = 0;
   while (std::getline(in, row)) ++rows, last = row;
   EXPECT_GE(rows, r.cycles);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "plant/plant.hpp"
+#include "tests/support/station_addresses.hpp"
 #include "vdrive/control/fault_service.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/runtime/event_loop.hpp"
@@ -228,6 +229,35 @@ TEST_F(SamplerTest, PlantSetChangesTheExternalLoadAndIsAnEvent) {
   EXPECT_EQ(events[0].kind, EventKind::plant_set);
   EXPECT_EQ(events[0].slave, 2);
   EXPECT_STREQ(events[0].text.data(), "external load 0.5");
+}
+
+TEST_F(SamplerTest, SamplesCarryTheStationAddressAndAPlantIsNamedByIt) {
+  Sampler s(net_, 100.0);
+  s.poll(0);
+  ASSERT_TRUE(test::assign_station_addresses(net_, 5'000'000, 0x1001));
+  s.poll(10'000'000);
+  ASSERT_TRUE(s.request(parse_telemetry_request(R"({"op":"plant_set","slave":"0x1002","external_load":0.25})")));
+  s.poll(11'000'000);
+  std::optional<TelemetryReply> reply = s.reply();
+  ASSERT_TRUE(reply);
+  EXPECT_TRUE(reply->reply.ok()) << reply->reply.error;
+  ASSERT_TRUE(s.request(parse_telemetry_request(R"({"op":"plant_set","slave":"0x1009","external_load":0.25})")));
+  s.poll(12'000'000);
+  reply = s.reply();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(reply->reply.status, control::ControlReply::Status::bad_request);
+  EXPECT_THAT(reply->reply.error, HasSubstr("no slave has station address 0x1009 (the line has 0x1001, 0x1002)"));
+  drain(s);
+  ASSERT_EQ(axes.size(), 4u);
+  EXPECT_EQ(axes[0].station, 0) << "before the master set one";
+  EXPECT_EQ(axes[2].station, 0x1001);
+  EXPECT_EQ(axes[3].station, 0x1002);
+  EXPECT_EQ(buses[3].station, 0x1002);
+  std::vector<EventSample> plant;
+  for (const EventSample& e : events)
+    if (e.kind == EventKind::plant_set) plant.push_back(e);
+  ASSERT_EQ(plant.size(), 1u);
+  EXPECT_EQ(plant[0].slave, 2) << "the event names the position";
 }
 
 TEST(SamplerSignals, ANamedSignalThatChangesIsAnEventWithItsNameAndPoint) {

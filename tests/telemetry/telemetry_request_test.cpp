@@ -38,12 +38,25 @@ TEST(TelemetryRequest, FaultRequestsAreTheControlProtocols) {
   EXPECT_EQ(r.fault.id, 3);
 }
 
+TEST(TelemetryRequest, APlantIsNamedByPositionOrStationAddress) {
+  TelemetryRequest r = parse_telemetry_request(R"({"op":"plant_set","slave":2,"external_load":0.5})");
+  EXPECT_EQ(r.plant.slave, 2);
+  EXPECT_EQ(r.plant.station, 0);
+  r = parse_telemetry_request(R"({"op":"plant_set","slave":"0x1002","external_load":-1.5})");
+  EXPECT_EQ(r.plant.slave, 0);
+  EXPECT_EQ(r.plant.station, 0x1002);
+  EXPECT_DOUBLE_EQ(r.plant.external_load, -1.5);
+}
+
 TEST(TelemetryRequest, MistakesAreNamed) {
   EXPECT_THAT(error_of("not json"), HasSubstr("not a JSON object"));
   EXPECT_THAT(error_of("[1,2]"), HasSubstr("not a JSON object"));
   EXPECT_THAT(error_of(R"({"op":"plant_set","external_load":1})"), HasSubstr("'slave' is missing"));
-  EXPECT_THAT(error_of(R"({"op":"plant_set","slave":0,"external_load":1})"), HasSubstr("'slave' must be an integer from 1"));
-  EXPECT_THAT(error_of(R"({"op":"plant_set","slave":"1","external_load":1})"), HasSubstr("'slave' must be an integer"));
+  EXPECT_THAT(error_of(R"({"op":"plant_set","slave":0,"external_load":1})"),
+              HasSubstr("'slave' must be a position (1 = first in cable order) or a station address such as 0x1001, not 0"));
+  EXPECT_THAT(error_of(R"({"op":"plant_set","slave":"1","external_load":1})"), HasSubstr("'slave' must be a position"));
+  EXPECT_THAT(error_of(R"({"op":"plant_set","slave":"0x10G2","external_load":1})"), HasSubstr("'0x10G2' names no slave"));
+  EXPECT_THAT(error_of(R"({"op":"plant_set","slave":"0x0","external_load":1})"), HasSubstr("station address 0x0000 is no slave's"));
   EXPECT_THAT(error_of(R"({"op":"plant_set","slave":1})"), HasSubstr("'external_load' is missing"));
   EXPECT_THAT(error_of(R"({"op":"plant_set","slave":1,"external_load":"heavy"})"), HasSubstr("'external_load' must be a finite number"));
   EXPECT_THAT(error_of(R"({"op":"plant_set","slave":1,"external_load":1,"inertia":2})"), HasSubstr("unexpected field 'inertia'"));

@@ -11,7 +11,11 @@ constexpr const char* kJson = "application/json";
 
 TEST(WebApi, LineDescribesEverySlave) {
   WebLine line;
-  ASSERT_TRUE(eventually([&] { return line.get("/api/v1/line")["slaves"][0]["drive"]["state"] != "unknown"; }));
+  // The drive's state comes with the samples (50 Hz), the AL state with the registers (10 Hz).
+  ASSERT_TRUE(eventually([&] {
+    const json l = line.get("/api/v1/line");
+    return l["slaves"][0]["drive"]["state"] != "unknown" && l["slaves"][0]["al_state_name"] != "unknown";
+  }));
   const json j = line.get("/api/v1/line");
   EXPECT_EQ(j["api"], "v1");
   EXPECT_EQ(j["token_required"], false);
@@ -73,6 +77,34 @@ TEST(WebApi, BadQueryParametersAreNamed) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
   EXPECT_NE(json::parse(r->body)["error"].get<std::string>().find("slave"), std::string::npos);
+}
+
+TEST(WebApi, ASlaveIsAPositionOrItsStationAddress) {
+  WebLine line;
+  auto c = line.client();
+  auto r = c.Get("/api/v1/slaves/0x1002/alarms");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 404);
+  EXPECT_NE(json::parse(r->body)["error"].get<std::string>().find("no master has set station addresses yet"), std::string::npos)
+      << r->body;
+
+  ASSERT_TRUE(line.assign_station_addresses(0x1001));
+  ASSERT_TRUE(eventually([&] { return line.get("/api/v1/line")["slaves"][1]["address"] == 0x1002; }));
+  EXPECT_EQ(line.get("/api/v1/slaves/0x1002/objects/0x1018/1")["value"], line.get("/api/v1/slaves/2/objects/0x1018/1")["value"]);
+  EXPECT_EQ(line.get("/api/v1/slaves/0x1002/alarms"), line.get("/api/v1/slaves/2/alarms"));
+  ASSERT_TRUE(eventually([&] { return line.get("/api/v1/samples")["seq"].get<std::uint64_t>() > 3; }));
+  const json two = line.get("/api/v1/samples?slave=0x1002");
+  ASSERT_EQ(two["axes"].size(), 1u);
+  EXPECT_EQ(two["axes"][0]["slave"], 2);
+  r = c.Get("/api/v1/events?slave=0x1009");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(json::parse(r->body)["error"].get<std::string>().find("no slave has station address 0x1009 (the line has 0x1001, 0x1002, 0x1003)"),
+            std::string::npos)
+      << r->body;
+  r = c.Get("/api/v1/slaves/0x1009/objects/0x6041/0");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 404);
 }
 
 TEST(WebApi, ObjectsAreListedAndSearched) {

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/station_addresses.hpp"
 #include "vdrive/control/fault_service.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/runtime/event_loop.hpp"
@@ -33,6 +34,10 @@ public:
     loop_ = std::thread([this] {
       while (!stop_.load()) {
         const Nanos now = clock_.now();
+        if (const std::uint16_t first = assign_first_.load(); first != 0) {
+          assigned_.store(vdrive::test::assign_station_addresses(network_, now, first) ? 1 : 2);
+          assign_first_.store(0);
+        }
         network_.tick(now);
         faults_.poll(now);
         server_->service().poll(now);
@@ -47,6 +52,13 @@ public:
   }
 
   WebServer& server() { return *server_; }
+  // As a master does at scan, on the loop's thread: station addresses first, first + 1, ...
+  bool assign_station_addresses(std::uint16_t first) {
+    assigned_.store(0);
+    assign_first_.store(first);
+    for (int i = 0; i < 1000 && assigned_.load() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return assigned_.load() == 1;
+  }
   // This loop never records a stall (it is not serve_once), so a test may: the one writer.
   runtime::HostStalls& stalls() { return counters_.stalls; }
   httplib::Client client() const {
@@ -67,13 +79,15 @@ private:
   control::FaultService faults_;
   std::unique_ptr<WebServer> server_;
   std::atomic<bool> stop_{false};
+  std::atomic<std::uint16_t> assign_first_{0};
+  std::atomic<int> assigned_{0};  // 0: pending, 1: done, 2: a slave did not take its address
   std::thread loop_;
 };
 
-// Waits up to 3 s for `done`.
+// Waits up to 10 s for `done`.
 template <typename F>
 bool eventually(F done) {
-  for (int i = 0; i < 300; ++i) {
+  for (int i = 0; i < 1000; ++i) {  // up to 10 s: a loaded CI host
     if (done()) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }

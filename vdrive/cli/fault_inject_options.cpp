@@ -2,19 +2,16 @@
 
 #include <CLI/CLI.hpp>
 
-#include <stdexcept>
-
-#include "ethercat/slave_ref.hpp"
+#include "vdrive/cli/slave_option.hpp"
 
 namespace vdrive::cli {
 
 void add_fault_inject_options(CLI::App* inj, FaultInjectOptions& o) {
   inj->add_option("kind", o.kind, "Fault kind")->required();
-  const CLI::Validator slave_ref([](std::string& value) { return ecat::slave_ref_problem(value); }, "N|0xADDR");
   inj->add_option("--slave", o.slave,
                   "The slave: its position in cable order (1 = first) or its station address (0x1001) (esc, mailbox, "
                   "drive, plant faults; link_down)")
-      ->check(slave_ref);
+      ->check(slave_ref_validator());
   inj->add_option("--port", o.port, "link_down: the cable at this port of --slave (0 = the cable into it, 1-3 = out of it)");
   inj->add_option("--duration", o.duration, "How long, e.g. 250ms (default: until cleared)");
   inj->add_option("--probability", o.probability, "Per frame, 0..1 (drop, corrupt, duplicate, reorder; default 1)");
@@ -30,11 +27,7 @@ void add_fault_inject_options(CLI::App* inj, FaultInjectOptions& o) {
 
 nlohmann::json fault_json(const FaultInjectOptions& o) {
   nlohmann::json f{{"kind", o.kind}};
-  if (o.slave) {  // a position as a number, an address as text: the protocol's two forms
-    const ecat::SlaveRef ref = ecat::parse_slave_ref(*o.slave);
-    if (ref.is_address()) f["slave"] = *o.slave;
-    else f["slave"] = ref.value;
-  }
+  if (o.slave) f["slave"] = slave_json(*o.slave);
   if (o.port) f["port"] = *o.port;
   if (o.count) f["count"] = *o.count;
   if (o.duration) f["duration"] = *o.duration;

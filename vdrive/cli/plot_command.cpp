@@ -23,11 +23,13 @@
 #include <string>
 #include <vector>
 
+#include "ethercat/slave_ref.hpp"
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/exit_codes.hpp"
 #include "vdrive/cli/gnuplot_script.hpp"
 #include "vdrive/cli/plot_markers.hpp"
 #include "vdrive/cli/plot_units.hpp"
+#include "vdrive/cli/slave_option.hpp"
 #include "vdrive/cli/trace_csv.hpp"
 
 extern char** environ;
@@ -38,7 +40,7 @@ namespace {
 struct PlotOptions {
   std::string trace;
   std::string output;
-  std::optional<int> slave;
+  std::optional<std::string> slave;  // a position or a station address
   std::string title;
   std::string size = "1200x900";
   bool from_zero = false;  // time axis from the first row, for traces stamped with a monotonic clock
@@ -154,15 +156,24 @@ void run(const PlotOptions& o) {
   }
   std::vector<const SlaveSeries*> series;
   std::vector<int> numbers;
+  const bool only = o.slave.has_value();
+  const ecat::SlaveRef ref = only ? ecat::parse_slave_ref(*o.slave) : ecat::SlaveRef{};
   for (const SlaveSeries& s : trace.slaves) {
-    if (o.slave && s.slave != *o.slave) continue;
+    if (only && (ref.is_address() ? s.station : s.slave) != ref.value) continue;
     series.push_back(&s);
     numbers.push_back(s.slave);
   }
   if (series.empty()) {
-    std::vector<int> present;
-    for (const SlaveSeries& s : trace.slaves) present.push_back(s.slave);
-    throw CliError(kExitBadArguments, fmt::format("--slave {}: {} has slave(s) {}", *o.slave, o.trace, fmt::join(present, ", ")));
+    std::vector<std::string> present;
+    bool stations = false;
+    for (const SlaveSeries& s : trace.slaves) {
+      present.push_back(ecat::slave_label(static_cast<std::size_t>(s.slave - 1), s.station, ""));
+      stations = stations || s.station != 0;
+    }
+    throw CliError(kExitBadArguments, fmt::format("--slave {}: {} has {}{}", *o.slave, o.trace, fmt::join(present, ", "),
+                                                  ref.is_address() && !stations
+                                                      ? " (no station addresses: its slaves had none, or it has no station column)"
+                                                      : ""));
   }
 
   // Products by cable order; the plotted slaves' own.
@@ -186,7 +197,7 @@ void run(const PlotOptions& o) {
     for (std::size_t k = 0; k < series.size(); ++k) units.per_slave[k] = normalising_scale(*series[k]);
   std::vector<std::string> names;
   for (std::size_t k = 0; k < series.size(); ++k)
-    names.push_back(products.empty() ? fmt::format("slave {}", numbers[k]) : fmt::format("slave {} {}", numbers[k], products[k]));
+    names.push_back(ecat::slave_label(static_cast<std::size_t>(numbers[k] - 1), series[k]->station, products.empty() ? "" : products[k]));
 
   std::vector<PlotMarker> markers = trace_markers(series);
   if (!o.events.empty()) {
@@ -195,7 +206,7 @@ void run(const PlotOptions& o) {
       const double shift = o.from_zero ? time_shift : 0.0;
       for (PlotMarker& m : more) {
         m.time_s -= shift;
-        if (o.slave && m.slave != 0 && m.slave != *o.slave) continue;
+        if (only && m.slave != 0 && m.slave != numbers.front()) continue;  // the event log counts positions
         markers.push_back(std::move(m));
       }
     } catch (const TraceCsvError& e) {
@@ -246,9 +257,9 @@ void add_plot_command(CLI::App& app) {
       ->type_name("TRACE.csv");
   cmd->add_option("--output,-o", o->output, "PNG file to write (default: TRACE with .png instead of .csv)")
       ->type_name("FILE");
-  cmd->add_option("--slave", o->slave, "Only this slave (1 = first in cable order); default: every slave")
-      ->type_name("K")
-      ->check(CLI::Range(1, 65535).description(""));
+  cmd->add_option("--slave", o->slave, "Only this slave: its position (1 = first) or station address (0x1002); default: every slave")
+      ->type_name("K|0xADDR")
+      ->check(slave_ref_validator().description(""));
   cmd->add_option("--title", o->title, "Title above the panels")->type_name("TEXT");
   cmd->add_flag("--from-zero", o->from_zero,
                 "Time axis from the first row (0 s) instead of the file's times, e.g. for a telemetry CSV stamped with "

@@ -13,8 +13,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "ethercat/slave_ref.hpp"
 #include "vdrive/cli/cli_error.hpp"
 #include "vdrive/cli/fault_inject_options.hpp"
+#include "vdrive/cli/slave_option.hpp"
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/runtime/line_status.hpp"
 #include "vdrive/runtime/stop_signal.hpp"
@@ -27,7 +29,7 @@ namespace {
 
 constexpr const char* kAxisHeader =
     "time_ns,slave,al_state,al_status_code,statusword,controlword,mode,position,velocity,torque,following_error,error_code,"
-    "winding_temperature_c,housing_temperature_c";
+    "winding_temperature_c,housing_temperature_c,station";
 constexpr const char* kEventHeader = "time_ns,slave,kind,value,previous,text";
 constexpr Nanos kViewRefresh = 100'000'000;  // live view: 10 updates per second
 
@@ -50,8 +52,9 @@ std::string csv_text(std::string s) {
 }  // namespace
 
 std::string telemetry_axis_line(const telemetry::AxisSample& a) {
-  return fmt::format("t={:.3f}s slave {} {}{} sw=0x{:04X} cw=0x{:04X} mode={} pos={} vel={} torque={} ferr={} err=0x{:04X}{}",
-                     static_cast<double>(a.time) * 1e-9, a.slave, runtime::al_state_name(a.al_state), (a.al_state & 0x10) ? "+ERR" : "",
+  return fmt::format("t={:.3f}s {} {}{} sw=0x{:04X} cw=0x{:04X} mode={} pos={} vel={} torque={} ferr={} err=0x{:04X}{}",
+                     static_cast<double>(a.time) * 1e-9, ecat::slave_label(a.slave - 1u, a.station, ""),
+                     runtime::al_state_name(a.al_state), (a.al_state & 0x10) ? "+ERR" : "",
                      a.statusword, a.controlword, a.mode, a.position, a.velocity, a.torque, a.following_error, a.error_code,
                      std::isnan(a.winding_c) ? std::string() : fmt::format(" winding={:.1f}C", a.winding_c));
 }
@@ -71,8 +74,32 @@ struct WatchOptions {
   std::string csv, events_csv;
   double duration_s = 0.0;  // 0: until Ctrl-C (or --count)
   std::uint64_t count = 0;  // 0: no limit
-  int slave = 0;            // 0: all
+  std::string slave;        // "": all; a position or a station address (ecat::parse_slave_ref)
   bool quiet = false;
+};
+
+// --slave: a position matches the samples' cable order, an address their station address. Events
+// carry the position only: an address finds it in the samples heard so far.
+class SlaveFilter {
+public:
+  explicit SlaveFilter(const std::string& text) {
+    if (!text.empty()) ref_ = ecat::parse_slave_ref(text);
+  }
+  bool keeps(std::uint16_t slave, std::uint16_t station) {
+    if (!ref_) return true;
+    if (!ref_->is_address()) return slave == ref_->value;
+    if (station == ref_->value) position_ = slave;
+    return station == ref_->value;
+  }
+  // An event of `slave` (0: the line, always kept).
+  bool keeps_event(std::uint16_t slave) const {
+    if (!ref_ || slave == 0) return true;
+    return ref_->is_address() ? position_ == slave : slave == ref_->value;
+  }
+
+private:
+  std::optional<ecat::SlaveRef> ref_;
+  std::uint16_t position_ = 0;  // the address's position, once a sample showed it
 };
 
 // A subscriber that hears nothing says so after this long, and fails at the end.
@@ -104,6 +131,7 @@ void watch(const WatchOptions& o) {
   std::map<int, telemetry::BusSample> last_bus;
   std::map<int, Nanos> last_printed;  // plain lines: per axis, at most one per kViewRefresh
   std::uint64_t rows = 0;
+  SlaveFilter filter(o.slave);
   int drawn = 0;  // lines of the live block on the terminal
   const auto started = std::chrono::steady_clock::now();
   auto next_draw = started;
@@ -113,13 +141,14 @@ void watch(const WatchOptions& o) {
   bool heard = false;  // anything from any publisher, whatever the filters keep
   h.axis = [&](const telemetry::AxisSample& a) {
     heard = true;
-    if (o.slave != 0 && a.slave != o.slave) return;
+    if (!filter.keeps(a.slave, a.station)) return;
     if (o.count != 0 && rows >= o.count) return;
     ++rows;
     if (csv.is_open()) {
       csv << a.time << ',' << a.slave << ',' << a.al_state << ',' << a.al_status_code << ',' << a.statusword << ','
           << a.controlword << ',' << int{a.mode} << ',' << a.position << ',' << a.velocity << ',' << a.torque << ','
-          << a.following_error << ',' << a.error_code << ',' << fmt_temp(a.winding_c) << ',' << fmt_temp(a.housing_c) << '\n';
+          << a.following_error << ',' << a.error_code << ',' << fmt_temp(a.winding_c) << ',' << fmt_temp(a.housing_c) << ','
+          << a.station << '\n';
     }
     last_axis[a.slave] = a;
     if (view && !tty) {
@@ -133,11 +162,11 @@ void watch(const WatchOptions& o) {
   };
   h.bus = [&](const telemetry::BusSample& b) {
     heard = true;
-    if (o.slave == 0 || b.slave == o.slave) last_bus[b.slave] = b;
+    if (filter.keeps(b.slave, b.station)) last_bus[b.slave] = b;
   };
   h.event = [&](const telemetry::Event& e) {
     heard = true;
-    if (o.slave != 0 && e.slave != 0 && e.slave != o.slave) return;
+    if (!filter.keeps_event(e.slave)) return;
     if (events.is_open()) events << e.time << ',' << e.slave << ',' << e.kind << ',' << e.value << ',' << e.previous << ',' << csv_text(e.text) << '\n';
     if (!o.quiet && !tty) fmt::print("event t={:.3f}s slave {} {}: {}\n", static_cast<double>(e.time) * 1e-9, e.slave, e.kind, e.text);
     if (!o.quiet && tty) fmt::print(stderr, "\nevent t={:.3f}s slave {} {}: {}\n", static_cast<double>(e.time) * 1e-9, e.slave, e.kind, e.text), drawn = 0;
@@ -161,9 +190,9 @@ void watch(const WatchOptions& o) {
       drawn = 0;
       for (const auto& [slave, a] : last_axis) fmt::print("\x1b[2K{}\n", telemetry_axis_line(a)), ++drawn;
       for (const auto& [slave, b] : last_bus) {
-        fmt::print("\x1b[2K  bus slave {}: frames in {} out {} dropped {}, rx errors {}, turnaround mean {} ns max {} ns, samples dropped {}, "
+        fmt::print("\x1b[2K  bus {}: frames in {} out {} dropped {}, rx errors {}, turnaround mean {} ns max {} ns, samples dropped {}, "
                    "host stalls {}\n",
-                   slave, b.frames_in, b.frames_out, b.frames_dropped, b.rx_errors, b.turnaround_mean, b.turnaround_max, b.samples_dropped,
+                   ecat::slave_label(slave - 1u, b.station, ""), b.frames_in, b.frames_out, b.frames_dropped, b.rx_errors, b.turnaround_mean, b.turnaround_max, b.samples_dropped,
                    b.host_stalls);
         ++drawn;
       }
@@ -250,7 +279,8 @@ void add_telemetry_command(CLI::App& app) {
   cmd->add_option("--events-csv", w->events_csv, "Record events to FILE (time_ns,slave,kind,value,previous,text)");
   cmd->add_option("--duration", w->duration_s, "Stop after S seconds (default: until Ctrl-C)")->check(CLI::Range(0.0, 1e9));
   cmd->add_option("--count", w->count, "Stop after N axis samples");
-  cmd->add_option("--slave", w->slave, "Only this slave (cable order, from 1)")->check(CLI::Range(1, 65535));
+  cmd->add_option("--slave", w->slave, "Only this slave: its position (1 = first) or station address (0x1002)")
+      ->check(slave_ref_validator());
   cmd->add_flag("--quiet,-q", w->quiet, "No live view (with --csv: record only)");
   cmd->callback([cmd, w] {
     if (cmd->get_subcommands().empty()) watch(*w);
@@ -269,14 +299,16 @@ void add_telemetry_command(CLI::App& app) {
   clr->add_option("id", *what, "Fault id, or all")->required();
   clr->callback([t, what] { dds_clear(*t, *what); });
 
-  auto slave = std::make_shared<int>(0);
+  auto slave = std::make_shared<std::string>();
   auto load = std::make_shared<double>(0.0);
   CLI::App* ps = cmd->add_subcommand("plant-set", "Change a plant parameter at run time: the external load on an axis");
   add_dds_target(ps, *t);
-  ps->add_option("--slave", *slave, "Slave in cable order, 1 = first")->required()->check(CLI::Range(1, 65535));
+  ps->add_option("--slave", *slave, "The slave: its position (1 = first) or station address (0x1002)")
+      ->required()
+      ->check(slave_ref_validator());
   ps->add_option("--external-load", *load, "External force/torque on the load, N or N m (0: none)")->required();
   ps->callback([t, slave, load] {
-    dds_request(*t, {{"op", "plant_set"}, {"slave", *slave}, {"external_load", *load}});
+    dds_request(*t, {{"op", "plant_set"}, {"slave", slave_json(*slave)}, {"external_load", *load}});
     fmt::print("slave {}: external load {:g}\n", *slave, *load);
   });
 }

@@ -65,7 +65,8 @@ TraceCsv read_trace_csv(const std::string& path) {
     throw TraceCsvError(fmt::format("{}:1: header lacks column(s) {} (it has: {})", path, fmt::join(missing, ", "),
                                     header_line.substr(0, 200)));
 
-  const std::optional<std::size_t> al_state = column(header, "al_state"), error_code = column(header, "error_code");
+  const std::optional<std::size_t> al_state = column(header, "al_state"), error_code = column(header, "error_code"),
+                                   station = column(header, "station");
   std::map<int, SlaveSeries> by_slave;
   int line_no = 1;
   while (std::getline(in, line)) {
@@ -95,6 +96,12 @@ TraceCsv read_trace_csv(const std::string& path) {
     s.following_error.push_back(number(cols[4]));
     if (al_state) s.al_state.push_back(number(*al_state));
     if (error_code) s.error_code.push_back(number(*error_code));
+    if (station) {
+      const double a = number(*station);
+      if (a < 0 || a > 0xFFFF || a != static_cast<double>(static_cast<int>(a)))
+        throw TraceCsvError(fmt::format("{}:{}: station '{}' is no station address (0 to 0xFFFF)", path, line_no, cells[*station]));
+      if (a != 0) s.station = static_cast<std::uint16_t>(a);
+    }
   }
   if (by_slave.empty()) throw TraceCsvError(fmt::format("{}: no rows after the header", path));
   TraceCsv trace;

@@ -498,6 +498,7 @@ private:
         r.slave = static_cast<int>(i + 1);
         r.al_status = peek16(i, kAlStatus);
         r.al_status_code = peek16(i, kAlStatusCode);
+        r.station = peek16(i, ecat::reg::kStationAddress);
         if (is_drive(i)) {
           r.statusword = static_cast<std::uint16_t>(object(i, 0x6041));
           r.controlword = static_cast<std::uint16_t>(object(i, 0x6040));

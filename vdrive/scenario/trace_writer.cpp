@@ -12,9 +12,9 @@ TraceWriter::TraceWriter(const std::string& path) : out_(path, std::ios::trunc),
 }
 
 void TraceWriter::write(const TraceRow& r) {
-  out_ << fmt::format("{},{},{},0x{:04X},0x{:04X},0x{:04X},{},{},{},{},{},0x{:04X}\n", r.time, r.slave, r.al_status & 0x0F,
+  out_ << fmt::format("{},{},{},0x{:04X},0x{:04X},0x{:04X},{},{},{},{},{},0x{:04X},0x{:04X}\n", r.time, r.slave, r.al_status & 0x0F,
                       r.al_status_code, r.statusword, r.controlword, r.mode, r.position, r.velocity, r.torque,
-                      r.following_error, r.error_code);
+                      r.following_error, r.error_code, r.station);
   if (!out_) throw std::runtime_error(path_ + ": writing the trace failed");
 }
 

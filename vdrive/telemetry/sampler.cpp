@@ -1,6 +1,7 @@
 // The telemetry's sampling on the event loop thread. See sampler.hpp.
 #include "vdrive/telemetry/sampler.hpp"
 
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 
 #include "ethercat/registers.hpp"
+#include "ethercat/slave_ref.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/fault/fault_injector.hpp"
 #include "vdrive/network/network.hpp"
@@ -114,6 +116,7 @@ void Sampler::sample(Nanos now) {
     esc::Esc& e = network_.esc(i);
     const auto slave = static_cast<std::uint16_t>(i + 1);
     const std::uint16_t al = e.peek_u16(kAlStatus), code = e.peek_u16(kAlStatusCode);
+    const std::uint16_t station = e.peek_u16(ecat::reg::kStationAddress);
     if (al != last_al_[i]) {
       char text[96];
       *fmt::format_to_n(text, sizeof text - 1, "AL status 0x{:02X} -> 0x{:02X}, status code 0x{:04X}{}", last_al_[i], al, code,
@@ -126,6 +129,7 @@ void Sampler::sample(Nanos now) {
       AxisSample a;
       a.time = now;
       a.slave = slave;
+      a.station = station;
       a.al_state = al;
       a.al_status_code = code;
       a.statusword = static_cast<std::uint16_t>(d.statusword.get());
@@ -157,6 +161,7 @@ void Sampler::sample(Nanos now) {
     BusSample b;
     b.time = now;
     b.slave = slave;
+    b.station = station;
     b.al_state = al;
     b.al_status_code = code;
     if (sources_.counters != nullptr) {
@@ -245,16 +250,23 @@ control::ControlReply Sampler::handle(const TelemetryRequest& r, Nanos now) {
     return fault_handler_(r.fault, now);
   }
   const PlantSet& p = r.plant;
-  if (p.slave < 1 || static_cast<std::size_t>(p.slave) > network_.size())
-    return control::error_reply(control::ControlReply::Status::bad_request,
-                                fmt::format("plant_set: no slave {} (the line has {})", p.slave, network_.size()));
-  plant::Plant* plant = network_.firmware(static_cast<std::size_t>(p.slave - 1)).plant();
+  std::size_t index = 0;
+  try {
+    std::vector<std::uint16_t> stations;
+    for (std::size_t i = 0; i < network_.size(); ++i) stations.push_back(network_.esc(i).peek_u16(ecat::reg::kStationAddress));
+    const ecat::SlaveRef ref = p.station != 0 ? ecat::SlaveRef{ecat::SlaveRef::Kind::address, p.station}
+                                              : ecat::SlaveRef{ecat::SlaveRef::Kind::position, static_cast<std::uint16_t>(p.slave)};
+    index = ecat::slave_index(ref, stations);
+  } catch (const std::invalid_argument& e) {
+    return control::error_reply(control::ControlReply::Status::bad_request, fmt::format("plant_set: {}", e.what()));
+  }
+  plant::Plant* plant = network_.firmware(index).plant();
   if (plant == nullptr || plant->axis_count() == 0)
-    return control::error_reply(control::ControlReply::Status::bad_request, fmt::format("plant_set: slave {} has no plant", p.slave));
+    return control::error_reply(control::ControlReply::Status::bad_request, fmt::format("plant_set: slave {} has no plant", index + 1));
   plant->set_external_load(0, p.external_load);
   char text[64];
   *fmt::format_to_n(text, sizeof text - 1, "external load {:g}", p.external_load).out = '\0';
-  event(now, static_cast<std::uint16_t>(p.slave), EventKind::plant_set, 0, 0, text);
+  event(now, static_cast<std::uint16_t>(index + 1), EventKind::plant_set, 0, 0, text);
   return {};
 }
 

@@ -13,6 +13,7 @@ namespace vdrive::telemetry {
 struct AxisSample {
   Nanos time = 0;
   std::uint16_t slave = 0;  // from 1
+  std::uint16_t station = 0;  // station address 0x0010 the master set (0: none yet)
   std::uint16_t al_state = 0, al_status_code = 0;
   std::uint16_t statusword = 0, controlword = 0;
   std::int8_t mode = 0;
@@ -32,6 +33,7 @@ struct AxisSample {
 struct BusSample {
   Nanos time = 0;
   std::uint16_t slave = 0;
+  std::uint16_t station = 0;
   std::uint16_t al_state = 0, al_status_code = 0;
   std::uint64_t frames_in = 0, frames_out = 0, frames_dropped = 0, send_failed = 0;
   std::uint32_t rx_errors = 0, lost_links = 0;

@@ -26,6 +26,7 @@ AxisSample to_sample(const msg::AxisState_& m) {
   AxisSample a;
   a.time = m.time_ns();
   a.slave = m.slave();
+  a.station = m.station();
   a.al_state = m.al_state();
   a.al_status_code = m.al_status_code();
   a.statusword = m.statusword();
@@ -45,6 +46,7 @@ BusSample to_sample(const msg::BusState_& m) {
   BusSample b;
   b.time = m.time_ns();
   b.slave = m.slave();
+  b.station = m.station();
   b.al_state = m.al_state();
   b.al_status_code = m.al_status_code();
   b.frames_in = m.frames_in();

@@ -40,6 +40,7 @@ struct TelemetryPublisher::Impl {
     msg::AxisState_ m;
     m.time_ns(a.time);
     m.slave(a.slave);
+    m.station(a.station);
     m.al_state(a.al_state);
     m.al_status_code(a.al_status_code);
     m.statusword(a.statusword);
@@ -59,6 +60,7 @@ struct TelemetryPublisher::Impl {
     msg::BusState_ m;
     m.time_ns(b.time);
     m.slave(b.slave);
+    m.station(b.station);
     m.al_state(b.al_state);
     m.al_status_code(b.al_status_code);
     m.frames_in(b.frames_in);

@@ -7,6 +7,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "ethercat/slave_ref.hpp"
 #include "vdrive/control/control_protocol.hpp"
 
 namespace vdrive::telemetry {
@@ -14,17 +15,29 @@ namespace {
 
 using control::ProtocolError;
 
+// "slave": a position (an integer from 1) or a station address ("0x1002").
+void read_slave(const nlohmann::json& s, PlantSet& p) {
+  if (s.is_string() && ecat::is_address_text(s.get<std::string>())) {
+    try {
+      p.station = ecat::parse_slave_ref(s.get<std::string>()).value;
+    } catch (const std::invalid_argument& e) {
+      throw ProtocolError(fmt::format("plant_set: 'slave': {}", e.what()));
+    }
+    return;
+  }
+  if (!s.is_number_integer() || s.get<std::int64_t>() < 1 || s.get<std::int64_t>() > std::numeric_limits<std::uint16_t>::max())
+    throw ProtocolError(fmt::format("plant_set: 'slave' must be {}, not {}", ecat::kSlaveRefForms, s.dump()));
+  p.slave = s.get<int>();
+}
+
 PlantSet read_plant_set(const nlohmann::json& j) {
   PlantSet p;
   for (const auto& [key, value] : j.items()) {
     if (key != "op" && key != "slave" && key != "external_load")
       throw ProtocolError(fmt::format("plant_set: unexpected field '{}' (plant_set takes slave, external_load)", key));
   }
-  if (!j.contains("slave")) throw ProtocolError("plant_set: 'slave' is missing (the drive whose plant changes, from 1)");
-  const nlohmann::json& s = j["slave"];
-  if (!s.is_number_integer() || s.get<std::int64_t>() < 1 || s.get<std::int64_t>() > std::numeric_limits<std::uint16_t>::max())
-    throw ProtocolError(fmt::format("plant_set: 'slave' must be an integer from 1, not {}", s.dump()));
-  p.slave = s.get<int>();
+  if (!j.contains("slave")) throw ProtocolError("plant_set: 'slave' is missing (the drive whose plant changes, from 1, or its station address)");
+  read_slave(j["slave"], p);
   if (!j.contains("external_load")) throw ProtocolError("plant_set: 'external_load' is missing (N or N m on the load)");
   const nlohmann::json& f = j["external_load"];
   if (!f.is_number() || !std::isfinite(f.get<double>()))

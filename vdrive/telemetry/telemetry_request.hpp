@@ -13,7 +13,8 @@
 namespace vdrive::telemetry {
 
 struct PlantSet {
-  int slave = 0;  // from 1
+  int slave = 0;              // from 1; 0 when named by its station address
+  std::uint16_t station = 0;  // the station address it was named by ("0x1002"), else 0
   double external_load = 0.0;
 };
 

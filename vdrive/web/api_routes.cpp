@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "common/time_text.hpp"
+#include "ethercat/slave_ref.hpp"
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/fault_service.hpp"
 #include "vdrive/control/signal_requests.hpp"
@@ -54,12 +55,26 @@ std::variant<std::uint64_t, ApiResult> number_param(const httplib::Request& req,
   return n;
 }
 
-// A slave position from the path (from 1), or the 404 that lists the positions.
+// A slave from the path, by position (from 1) or station address ("0x1002"), as its index; or
+// the 404 that says which there are.
 std::variant<std::size_t, ApiResult> slave_of(const WebContext& c, const std::string& text) {
-  const std::optional<std::uint32_t> n = parse_object_number(text, 0xFFFF);
-  if (!n || *n < 1 || *n > c.record.size())
-    return api_error(404, fmt::format("no slave {} (the line has slaves 1 to {})", text, c.record.size()));
-  return static_cast<std::size_t>(*n - 1);
+  try {
+    return ecat::slave_index(ecat::parse_slave_ref(text), c.record.stations());
+  } catch (const std::invalid_argument& e) {
+    return api_error(404, fmt::format("no slave {}: {}", text, e.what()));
+  }
+}
+
+// "?slave=2" or "?slave=0x1002" as a position (0: absent, every slave), or the 400 naming it.
+std::variant<std::uint64_t, ApiResult> slave_param(const httplib::Request& req, const WebContext& c) {
+  if (!req.has_param("slave")) return std::uint64_t{0};
+  const std::string v = req.get_param_value("slave");
+  if (v == "0") return std::uint64_t{0};
+  try {
+    return std::uint64_t{ecat::slave_index(ecat::parse_slave_ref(v), c.record.stations()) + 1};
+  } catch (const std::invalid_argument& e) {
+    return api_error(400, fmt::format("query parameter \"slave\": {}", e.what()));
+  }
 }
 
 json fault_status_json(const control::FaultStatus& f) {
@@ -86,7 +101,7 @@ void add_line_routes(httplib::Server& s, WebContext& c) {
   s.Get("/api/v1/line", [&c](const httplib::Request&, httplib::Response& res) { send(res, {200, c.record.line(c.clock.now())}); });
   s.Get("/api/v1/samples", [&c](const httplib::Request& req, httplib::Response& res) {
     const auto since = number_param(req, "since", 0);
-    const auto slave = number_param(req, "slave", 0, c.record.size());
+    const auto slave = slave_param(req, c);
     if (const auto* e = std::get_if<ApiResult>(&since)) return send(res, *e);
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
     json j = c.record.samples(std::get<std::uint64_t>(since), static_cast<int>(std::get<std::uint64_t>(slave)));
@@ -95,7 +110,7 @@ void add_line_routes(httplib::Server& s, WebContext& c) {
   });
   const auto events = [&c](const httplib::Request& req, httplib::Response& res, bool csv) {
     const auto since = number_param(req, "since", 0);
-    const auto slave = number_param(req, "slave", 0, c.record.size());
+    const auto slave = slave_param(req, c);
     if (const auto* e = std::get_if<ApiResult>(&since)) return send(res, *e);
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
     const std::string kind = req.has_param("kind") ? req.get_param_value("kind") : "";

@@ -111,6 +111,13 @@ void LineRecord::set_registers(const std::vector<SlaveRegisters>& registers, Nan
   registers_seen_ = true;
 }
 
+std::vector<std::uint16_t> LineRecord::stations() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::uint16_t> s;
+  for (const SlaveRegisters& r : registers_) s.push_back(r.station_address);
+  return s;
+}
+
 void LineRecord::set_faults(std::vector<control::FaultStatus> faults) {
   const std::lock_guard<std::mutex> lock(mutex_);
   faults_ = std::move(faults);

@@ -50,6 +50,8 @@ public:
   }
 
   std::size_t size() const { return slaves_.size(); }
+  // Each slave's station address (0010h) in cable order, as last copied (0: none set yet).
+  std::vector<std::uint16_t> stations() const;
   const SlaveInfo& slave(std::size_t i) const { return slaves_[i]; }
   const LineIdentity& identity() const { return identity_; }
 
