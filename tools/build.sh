@@ -16,7 +16,7 @@ if [ "${VDRIVE_DEMO_ONLY:-0}" = 1 ]; then
 else
   what=(-DVDRIVE_BUILD_TESTS=ON -DVDRIVE_BUILD_BENCH=ON)
   targets=()
-  first="about 25 minutes on 2 cores the first time (tests and benchmarks included)"
+  first="about 10 minutes on 2 cores the first time (tests and benchmarks included)"
 fi
 started=$SECONDS
 cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=${VDRIVE_BUILD_TYPE:-Release} "${what[@]}" "$@" >/dev/null
