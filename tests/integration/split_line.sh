@@ -3,7 +3,8 @@
 # (`vdrive run --processes 2`: slaves 1-2 here, slave 3 in a child process behind a veth pair the
 # run makes) must look to a master exactly as the same line served by one process: the same
 # identities, station addresses and positions (`vdrive-master scan --json`), DC delays that
-# increase along the line, and Op with DC at 1 ms with 0 wrong working counters. Then the child
+# increase along the line, and Op with DC at 1 ms with 0 wrong working counters. A fault for slave
+# 3 through part 1's control socket is refused naming the other process. Then the child
 # is killed: the first part loses link on its port 1 and closes the line there, so a scan finds
 # two slaves, and vdrive run names the part that ended. At the end the run's veth pairs are gone.
 #
@@ -37,6 +38,13 @@ expect_delays_increase "$WORK/two.json" "in two processes (one process: $(scan_d
 grep -q "part 2 (slave 3) serves" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "no child part logged"; }
 
 expect_clean_op "op over two processes"
+
+# Faults through part 1's control socket reach its own slaves; one for slave 3 says where it is.
+out=$(ip netns exec "$NS" "$VDRIVE" fault inject --iface "$S_IF" overload --slave 3 2>&1); rc=$?
+[ $rc -eq 2 ] && echo "$out" | grep -q "slave 3 is served by another process of this run (--processes); faults reach this process's slaves, 1 to 2" \
+  || fail "a fault for part 2's slave: exit $rc, '$out'"
+out=$(ip netns exec "$NS" "$VDRIVE" fault inject --iface "$S_IF" overload --slave 2 --duration 10ms 2>&1) \
+  || fail "a fault for part 1's slave 2: '$out'"
 
 # The second part ends: the line closes at slave 2.
 child=$(pgrep -P "$VDRIVE_PID" -f "run --iface vd") || fail "no child process of vdrive run"

@@ -58,6 +58,7 @@ struct RunOptions {
   std::string netns;                // --netns: the interfaces are in this network namespace
   long processes = 1;               // --processes: the line cut into N parts, one process and core each
   int ready_fd = -1;                // a part of --processes tells its parent here that it serves
+  std::size_t later_slaves = 0;     // --processes, part 1: the slaves the other parts serve
   std::vector<std::string> drives;
   std::string network_file;         // --network: the slaves, topology, aliases and wires of a network file
   std::string eni;                  // --eni: the network a master's ENI describes
@@ -321,6 +322,7 @@ void run_in_parts(RunOptions o) {
   first.drives.assign(o.drives.begin(), o.drives.begin() + static_cast<long>(parts[0].count));
   first.plants = plants_of_part(o.plants, parts, 0, o.drives.size());
   first.next_iface = others.first_onward();
+  first.later_slaves = o.drives.size() - parts[0].count;
   first.cpu = cpu_of(0);
   spdlog::info("the line of {} slaves in {} processes: part 1 (slaves 1-{}) here on CPU {}", o.drives.size(),
                parts.size(), parts[0].count, first.cpu);
@@ -411,6 +413,7 @@ void run(RunOptions o) {
   control::FaultService faults(*network, &wire, &impaired);
   const runtime::LoopWaker waker;  // this thread serves: requests cut its wait short
   faults.set_wake([&waker] { waker.wake(); });
+  faults.set_later_slaves(o.later_slaves);
   const std::unique_ptr<control::ControlServer> control = o.no_control ? nullptr : open_control(o, faults);
   for (const machine::ArmedFault& a : o.network.faults) faults.arm(a.spec, clock.now() + a.at, a.origin);
 

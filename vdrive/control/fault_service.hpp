@@ -42,6 +42,8 @@ public:
   ControlReply call(ControlRequest request, Nanos timeout);
 
   const fault::FaultInjector& injector() const { return injector_; }
+  // See fault::FaultInjector::set_later_slaves.
+  void set_later_slaves(std::size_t count) { injector_.set_later_slaves(count); }
 
   // Before the loop starts: a fault to inject when the loop's clock reaches `at` (a network
   // file's armed faults); the outcome is logged with `origin`, a refusal as a warning.

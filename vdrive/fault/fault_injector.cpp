@@ -51,8 +51,8 @@ void FaultInjector::check(const FaultSpec& s) const {
   const auto where = [&] { return describe(s); };
   const int n = static_cast<int>(network_.size());
   if (s.kind == FaultKind::link_down) {
-    if (s.slave < 1 || s.slave > n)
-      throw FaultError(fmt::format("{}: the network has cables into slaves 1..{}", where(), n));
+    if (s.slave > n) refuse_slave(s, s.slave);
+    if (s.slave < 1) throw FaultError(fmt::format("{}: the network has cables into slaves 1..{}", where(), n));
     if (network_.segment().cabled_at(static_cast<std::size_t>(s.slave - 1), s.port) < 0)
       throw FaultError(fmt::format("{}: nothing is cabled to port {} of slave {}", where(), s.port, s.slave));
     return;
@@ -64,8 +64,8 @@ void FaultInjector::check(const FaultSpec& s) const {
     if (s.delay < 0) throw FaultError(fmt::format("{}: delay must not be negative", where()));
     return;
   }
-  if (s.slave < 1 || s.slave > n)
-    throw FaultError(fmt::format("{}: no slave {} (the line has {})", where(), s.slave, n));
+  if (s.slave > n) refuse_slave(s, s.slave);
+  if (s.slave < 1) throw FaultError(fmt::format("{}: no slave {} (the line has {})", where(), s.slave, n));
   auto& fw = network_.firmware(static_cast<std::size_t>(s.slave - 1));
   if ((i.layer == Layer::drive && !fw.drive()) || (i.layer == Layer::plant && !fw.plant()))
     throw FaultError(fmt::format("{}: slave {} ({}) has no drive", where(), s.slave,
@@ -79,6 +79,17 @@ void FaultInjector::check(const FaultSpec& s) const {
     throw FaultError(fmt::format("{}: friction_scale must be >= 0", where()));
 }
 
+void FaultInjector::refuse_slave(const FaultSpec& s, int slave) const {
+  const std::size_t n = network_.size();
+  if (static_cast<std::size_t>(slave) <= n + later_slaves_)
+    throw FaultError(fmt::format("{}: slave {} is served by another process of this run (--processes); faults reach "
+                                 "this process's slaves, 1 to {}",
+                                 describe(s), slave, n));
+  if (s.kind == FaultKind::link_down)
+    throw FaultError(fmt::format("{}: the network has cables into slaves 1..{}", describe(s), n + later_slaves_));
+  throw FaultError(fmt::format("{}: no slave {} (the line has {})", describe(s), slave, n + later_slaves_));
+}
+
 FaultSpec FaultInjector::with_position(const FaultSpec& s) const {
   if (s.station == 0 || s.slave != 0) return s;
   std::vector<std::uint16_t> stations;
@@ -87,7 +98,11 @@ FaultSpec FaultInjector::with_position(const FaultSpec& s) const {
   try {
     found.slave = static_cast<int>(ecat::slave_index({ecat::SlaveRef::Kind::address, s.station}, stations)) + 1;
   } catch (const std::invalid_argument& e) {
-    throw FaultError(fmt::format("{}: {}", describe(s), e.what()));
+    throw FaultError(fmt::format("{}: {}{}", describe(s), e.what(),
+                                 later_slaves_ != 0 ? fmt::format("; slaves after {} are served by other processes of this run, "
+                                                                  "whose addresses are not known here",
+                                                                  network_.size())
+                                                    : std::string()));
   }
   return found;
 }

@@ -53,7 +53,13 @@ public:
 
   const std::vector<ActiveFault>& active() const { return active_; }
 
+  // The slaves after this network's last that other processes of the same run serve (`vdrive run
+  // --processes`): a fault for one of them is refused saying so, not as a slave the line lacks.
+  void set_later_slaves(std::size_t count) { later_slaves_ = count; }
+
 private:
+  // The refusal of slave `slave` (from 1), beyond this network's: in a later part, or none.
+  [[noreturn]] void refuse_slave(const FaultSpec& spec, int slave) const;
   FaultSpec with_position(const FaultSpec& spec) const;
   void check(const FaultSpec& spec) const;
   void apply_one_shot(const FaultSpec& spec, Nanos now);
@@ -71,6 +77,7 @@ private:
   WireImpairment* wire_;
   std::vector<ActiveFault> active_;
   int next_id_ = 1;
+  std::size_t later_slaves_ = 0;
 };
 
 }  // namespace vdrive::fault
