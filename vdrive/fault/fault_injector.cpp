@@ -9,11 +9,11 @@
 #include <fmt/format.h>
 
 #include "esc_model/esc_faults.hpp"
-#include "ethercat/registers.hpp"
 #include "ethercat/slave_ref.hpp"
 #include "plant/axis_faults.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/drive/drive_engine.hpp"
+#include "vdrive/network/slave_lookup.hpp"
 #include "vdrive/drive/injected_fault.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/firmware/mailbox/mailbox_faults.hpp"
@@ -92,11 +92,9 @@ void FaultInjector::refuse_slave(const FaultSpec& s, int slave) const {
 
 FaultSpec FaultInjector::with_position(const FaultSpec& s) const {
   if (s.station == 0 || s.slave != 0) return s;
-  std::vector<std::uint16_t> stations;
-  for (std::size_t i = 0; i < network_.size(); ++i) stations.push_back(network_.esc(i).peek_u16(ecat::reg::kStationAddress));
   FaultSpec found = s;
   try {
-    found.slave = static_cast<int>(ecat::slave_index({ecat::SlaveRef::Kind::address, s.station}, stations)) + 1;
+    found.slave = static_cast<int>(network::find_slave(network_, {ecat::SlaveRef::Kind::address, s.station})) + 1;
   } catch (const std::invalid_argument& e) {
     throw FaultError(fmt::format("{}: {}{}", describe(s), e.what(),
                                  later_slaves_ != 0 ? fmt::format("; slaves after {} are served by other processes of this run, "

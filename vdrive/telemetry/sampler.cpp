@@ -10,10 +10,10 @@
 #include <stdexcept>
 
 #include "ethercat/registers.hpp"
-#include "ethercat/slave_ref.hpp"
 #include "plant/plant.hpp"
 #include "vdrive/fault/fault_injector.hpp"
 #include "vdrive/network/network.hpp"
+#include "vdrive/network/slave_lookup.hpp"
 #include "vdrive/runtime/event_loop.hpp"
 
 namespace vdrive::telemetry {
@@ -252,11 +252,9 @@ control::ControlReply Sampler::handle(const TelemetryRequest& r, Nanos now) {
   const PlantSet& p = r.plant;
   std::size_t index = 0;
   try {
-    std::vector<std::uint16_t> stations;
-    for (std::size_t i = 0; i < network_.size(); ++i) stations.push_back(network_.esc(i).peek_u16(ecat::reg::kStationAddress));
     const ecat::SlaveRef ref = p.station != 0 ? ecat::SlaveRef{ecat::SlaveRef::Kind::address, p.station}
                                               : ecat::SlaveRef{ecat::SlaveRef::Kind::position, static_cast<std::uint16_t>(p.slave)};
-    index = ecat::slave_index(ref, stations);
+    index = network::find_slave(network_, ref);
   } catch (const std::invalid_argument& e) {
     return control::error_reply(control::ControlReply::Status::bad_request, fmt::format("plant_set: {}", e.what()));
   }
