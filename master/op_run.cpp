@@ -23,7 +23,7 @@ std::string al_summary(Master& master) {
       master.read_al_status(i);
       text += "\n  " + describe(master.slaves()[i]);
     } catch (const std::exception& e) {
-      text += fmt::format("\n  {}  0x{:04X}  no answer ({})", i, master.slaves()[i].station, e.what());
+      text += fmt::format("\n  {}  0x{:04X}  no answer ({})", i + 1, master.slaves()[i].station, e.what());  // from 1, as describe()
     }
   }
   return text;
