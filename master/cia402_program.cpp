@@ -249,10 +249,12 @@ static std::string outages(const DriveResult& r) {
                      d.longest() / 1'000'000, d.out() ? ", out at the end" : "");
 }
 
+std::string label(const DriveResult& r) { return ecat::slave_label(r.position, r.station, r.name); }
+
 std::string describe(const DriveResult& r) {
   return fmt::format("{}: {}, amplitude {:.0f}, max following error {} (window 6065h = {}; position "
                      "units of 6064h) over {} cycles, statusword 0x{:04X}, 603Fh 0x{:04X}{}{}{}",
-                     ecat::slave_label(r.position, r.station, r.name), verdict(r), r.amplitude, r.max_following_error,
+                     label(r), verdict(r), r.amplitude, r.max_following_error,
                      r.following_window, r.samples, r.statusword, r.error_code, outages(r), r.note.empty() ? "" : ": ", r.note);
 }
 

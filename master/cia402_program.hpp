@@ -71,6 +71,8 @@ struct DriveResult {
 // the outages follow: "; 3 outages, 3 recovered (603Fh FF18h x2, none x1), longest 412 ms" and
 // "FAILED (not enabled again within 10000 ms: 1 outage)".
 std::string describe(const DriveResult& r);
+// "slave 1 @0x1001 NAME": how the drive's lines name it (ethercat/slave_ref.hpp).
+std::string label(const DriveResult& r);
 
 class SineProgram {
 public:

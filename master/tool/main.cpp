@@ -251,7 +251,7 @@ int run_op(const std::string& iface, vdrive::master::OpRunOptions options, int r
       program->on_recovery([](const vdrive::master::DriveResult& r, vdrive::master::DriveRecovery::Event event) {
         using Event = vdrive::master::DriveRecovery::Event;
         const auto& d = r.recovery;
-        const std::string who = vdrive::ecat::slave_label(r.position, r.station, r.name);
+        const std::string who = vdrive::master::label(r);
         if (event == Event::lost)
           std::printf("%s %s: out (603Fh %04Xh)\n", wall_time().c_str(), who.c_str(), d.code());
         else if (event == Event::recovered)
