@@ -3,7 +3,8 @@
 #  1. `vdrive scenario run scenarios/ --veth` inside a network namespace made here: the built-in
 #     master and the line on a veth pair vdrive makes there, on the monotonic clock. Every scenario
 #     passes; the JUnit report says so; every capture (--pcap) decodes in tshark without
-#     "Malformed" or error-level expert info.
+#     "Malformed" or error-level expert info. A run whose every failure followed a host stall (the
+#     report says so) failed for the host: the library runs once more, and must pass then.
 #  2. An external master: `vdrive scenario run scenarios/line_op_watch.yaml --iface S_IF` serves the
 #     line in the namespace while `vdrive-master op` on the other veth end takes it to Op; the
 #     scenario's drive-side expectations and its injected frame loss hold.
@@ -22,10 +23,27 @@ require_tools tshark python3
 ip netns add "$NS" || fail "cannot create namespace $NS"
 
 # 1. The library over a veth pair vdrive makes (and removes) inside the namespace.
-ip netns exec "$NS" "$VDRIVE" scenario run "$SRC/scenarios" --veth --junit "$WORK/junit.xml" \
-  --pcap "$WORK/cap.pcapng" >"$WORK/rt.txt" 2>"$WORK/rt.err"
-rc=$?
-cat "$WORK/rt.txt" "$WORK/rt.err"
+run_library() {
+  rm -f "$WORK"/cap-*.pcapng
+  ip netns exec "$NS" "$VDRIVE" scenario run "$SRC/scenarios" --veth --junit "$WORK/junit.xml" \
+    --pcap "$WORK/cap.pcapng" >"$WORK/rt.txt" 2>"$WORK/rt.err"
+  rc=$?
+  cat "$WORK/rt.txt" "$WORK/rt.err"
+}
+# Whether every failed expectation came right after a host stall: the report ends each such line
+# "(after a host stall of N ms)" (docs/reliability.md). Those failed for the host, not for vdrive.
+only_host_stalls() {
+  python3 - "$WORK/rt.txt" <<'PY'
+import re, sys
+failures = [l for l in open(sys.argv[1]) if re.match(r"^  \S+\.yaml:(\d+:| stopped:) ", l)]  # a stop is never the host's
+sys.exit(0 if failures and all("(after a host stall of " in l for l in failures) else 1)
+PY
+}
+run_library
+if [ $rc -ne 0 ] && only_host_stalls; then
+  echo "every failure followed a host stall: the library runs once more"
+  run_library
+fi
 [ $rc -eq 0 ] || fail "vdrive scenario run --veth exited $rc"
 count=$(ls "$SRC"/scenarios/*.yaml | wc -l)
 grep -Eq "^scenarios: $count passed, 0 failed$" "$WORK/rt.txt" || fail "not all $count scenarios passed in real time"
