@@ -25,6 +25,8 @@
 #                      (--iface IF --no-control --drive ... $VDRIVE_OPTS); default "BUILD/vdrive/vdrive run"
 #   PROCESSES="1 2"    line layouts measured each round: 1 is VDRIVE_CMD as it is (label vdrive),
 #                      P > 1 adds `--processes P` to it (label vdrive-pP); default "1"
+#   BATCH_US=US        also measure each round the one-process line with `--batch-steps-us US`
+#                      (label vdrive-batched: control steps run at the bus's events, not at 8 kHz)
 #   VDRIVE_READY=TEXT  what vdrive's log shows once it serves (default "serving")
 #   VDRIVE_OPTS="..."  extra `vdrive run` options (e.g. "--busy-poll-us 200 --cpu 1")
 #   ECHO_OPTS="..."    extra echo options (e.g. "--busy-poll-us 200")
@@ -165,6 +167,11 @@ for ((ROUND = 1; ROUND <= ROUNDS; ROUND++)); do
       measure "$label" "$n" op || status=1
       stop_server
     done
+    if [ -n "${BATCH_US:-}" ]; then
+      vdrive_line vdrive-batched "$n" 1 --batch-steps-us "$BATCH_US"
+      measure vdrive-batched "$n" op || status=1
+      stop_server
+    fi
     if [ -n "${WEB_PAGE:-}" ]; then
       vdrive_line vdrive-web "$n" 1 --web 127.0.0.1:8377
       # The stream alone: what the server does for an open page, without a browser's rendering.

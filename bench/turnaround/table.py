@@ -5,7 +5,7 @@ round 1).
 
 1. Per line size, rate and responder: each figure's median over the rounds with its spread
    (min-max), in microseconds, and the counts summed over the rounds.
-2. The ratios pair by pair: every vdrive variant (vdrive, vdrive-pP, vdrive+stream, vdrive+page)
+2. The ratios pair by pair: every vdrive variant (vdrive, vdrive-pP, vdrive-batched, vdrive+stream, vdrive+page)
    against the echo floor and against KickCAT, figure by figure, one ratio per round from the two
    runs of that round (measured minutes apart at most, so both saw the same machine), then the
    median of those ratios. A ratio of medians would pair runs from different moments.

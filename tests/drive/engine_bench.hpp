@@ -104,7 +104,10 @@ public:
       engine_->advance_to(now_, bus);
       engine_->outputs_taken(now_);
       now_ += cycle;
-      engine_->advance_to(now_ - 1, bus);
+      // The DC time the master gave moves on with the clock, as the ESC's does (0: none given).
+      BusState later = bus;
+      if (later.system_time_ns != 0) later.system_time_ns += static_cast<std::uint64_t>(cycle - 1);
+      engine_->advance_to(now_ - 1, later);
     }
   }
   // Runs until `done()` or `limit`; true if done.

@@ -54,13 +54,20 @@ TEST_P(EngineTouchProbe, LatchesThePositionWhereThePlantsProbeInputChanged) {
   b.run(5 * kMs);
   EXPECT_EQ(b.get(0x60B9) & 0x7, kEnabled) << "channel 1 enabled, nothing stored yet " << b.diag();
 
-  Nanos t_rise = -1, t_fall = -1;
+  // The edges' instants, interpolated between the bus cycles that saw the angle before and after.
+  Nanos t_rise = -1, t_fall = -1, t_before = 0;
+  double angle_before = a0;
+  const auto crossed = [&](double edge, Nanos now, double angle) {
+    return t_before + static_cast<Nanos>((edge - angle_before) / (angle - angle_before) * double(now - t_before));
+  };
   b.set(0x60FF, 0, std::llround(b.user_speed(kSpeedRpm)));
   b.run(2500 * kMs, [&](Nanos now) {
     b.bus.system_time_ns = kSystemTimeBase + static_cast<std::uint64_t>(now);
     const double angle = b.feedback().motor_angle_rad;
-    if (t_rise < 0 && angle >= kRising) t_rise = now;
-    if (t_fall < 0 && angle >= kFalling) t_fall = now;
+    if (t_rise < 0 && angle >= kRising) t_rise = crossed(kRising, now, angle);
+    if (t_fall < 0 && angle >= kFalling) t_fall = crossed(kFalling, now, angle);
+    t_before = now;
+    angle_before = angle;
   });
   ASSERT_GT(b.motor_revs(), 2.0) << "driven through the window " << b.diag();
   ASSERT_GE(t_rise, 0);
@@ -84,13 +91,16 @@ TEST_P(EngineTouchProbe, LatchesThePositionWhereThePlantsProbeInputChanged) {
   if (has_time_stamps) {
     // DS1000A-EC: 60D1h/60D2h in ns (L3793-L3803), the low 32 bits of the DC system time. The
     // bench gives the drive the system time once per 1 ms bus cycle, as the firmware reads it
-    // from the ESC when it runs: the stamp lies within the cycle of the edge (+- 1 ms).
+    // from the ESC when it runs, and the drive catches up the cycle's eight control steps at once:
+    // each step still stamps the DC time of its own instant, so the stamp lies within the control
+    // step of the edge (125 us), not merely within its bus cycle.
     const std::int64_t stamp = b.get(0x60D1);
+    const double step = static_cast<double>(b.engine().control_period());
     EXPECT_NE(stamp, stamp_before) << "60D1h changed with the latch";
     const auto expected = static_cast<std::uint32_t>(kSystemTimeBase + static_cast<std::uint64_t>(t_rise));
-    EXPECT_NEAR(static_cast<double>(stamp), static_cast<double>(expected), 1e6) << "time of the rising edge";
+    EXPECT_NEAR(static_cast<double>(stamp), static_cast<double>(expected), step) << "time of the rising edge";
     const auto expected_fall = static_cast<std::uint32_t>(kSystemTimeBase + static_cast<std::uint64_t>(t_fall));
-    EXPECT_NEAR(static_cast<double>(b.get(0x60D2)), static_cast<double>(expected_fall), 1e6)
+    EXPECT_NEAR(static_cast<double>(b.get(0x60D2)), static_cast<double>(expected_fall), step)
         << "60D2h: time of the falling edge";
   }
   EXPECT_EQ(b.get(0x603F), 0) << b.diag();

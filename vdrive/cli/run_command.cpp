@@ -69,6 +69,7 @@ struct RunOptions {
   bool foe_strict = false;          // --foe-strict: FoE takes only ECATFW__ files in vdrive's image format
   int rt_priority = 0;  // 0: normal scheduling
   long busy_poll_us = 0;  // raw socket: spin before sleeping (RawSocketLink::Options::busy_poll)
+  long batch_steps_us = 0;  // the drives' control steps wait this long for a wake-up (Network::set_control_step_batch)
   bool no_rx_ring = false;  // raw socket: recvfrom instead of the PACKET_RX_RING (RawSocketLink::Options::rx_ring)
   int cpu = -1;           // pin the serving thread; -1: no pinning
   long slice_us = 100;    // the serving thread's time slice (runtime::set_time_slice); 0: the kernel's
@@ -311,6 +312,7 @@ void run_in_parts(RunOptions o) {
     if (o.rt_priority != 0) a.insert(a.end(), {"--rt-priority", std::to_string(o.rt_priority)});
     if (o.slice_given) a.insert(a.end(), {"--slice-us", std::to_string(o.slice_us)});
     if (o.busy_poll_us != 0) a.insert(a.end(), {"--busy-poll-us", std::to_string(o.busy_poll_us)});
+    if (o.batch_steps_us != 0) a.insert(a.end(), {"--batch-steps-us", std::to_string(o.batch_steps_us)});
     if (o.no_rx_ring) a.push_back("--no-rx-ring");
     if (o.no_qdisc_bypass) a.push_back("--no-qdisc-bypass");
     a.insert(a.end(), {"--stall-threshold-ms", fmt::format("{}", o.stall_ms)});
@@ -383,6 +385,7 @@ void run(RunOptions o) {
     options.plants = std::move(plants);
     if (!o.network_file.empty()) apply_network_file(o, options);
     network = std::make_unique<network::Network>(o.drives, clock, options);
+    network->set_control_step_batch(static_cast<Nanos>(o.batch_steps_us) * 1000);
   } catch (const std::invalid_argument& e) {
     throw CliError(kExitBadArguments, fmt::format("{}", e.what()));
   } catch (const profile::ProfileError& e) {
@@ -418,9 +421,10 @@ void run(RunOptions o) {
   for (const machine::ArmedFault& a : o.network.faults) faults.arm(a.spec, clock.now() + a.at, a.origin);
 
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
-  spdlog::info("serving {} slave(s) on {}: {} (hop delay {} ns{}); SIGINT/SIGTERM stops",
+  spdlog::info("serving {} slave(s) on {}: {} (hop delay {} ns{}{}); SIGINT/SIGTERM stops",
                o.drives.size(), where, fmt::join(o.drives, ", "), o.hop_delay,
-               o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "");
+               o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "",
+               o.batch_steps_us != 0 ? fmt::format(", control steps batched within {} us", o.batch_steps_us) : "");
   if (onward_link)
     spdlog::info("the line goes on through {} (port 1 of slave {}; link {})", o.next_iface,
                  network->segment().onward_slave() + 1, onward_link->carrier() ? "up" : "down: the line ends here until it comes up");
@@ -548,6 +552,11 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--busy-poll-us", o->busy_poll_us,
                   "Raw socket: spin up to US microseconds for the next frame before sleeping (default 0: sleep at once)")
       ->check(CLI::Range(0L, 1'000'000L));
+  cmd->add_option("--batch-steps-us", o->batch_steps_us,
+                  "Let each drive's control steps wait up to US microseconds for the next wake-up (a frame, SYNC0, a "
+                  "request) and run there in a batch, each with its own instant, so the loop wakes for the bus and not "
+                  "for every step (default 0: every step at its instant); docs/performance.md")
+      ->check(CLI::Range(0L, 100'000L));
   cmd->add_option("--cpu", o->cpu, "Pin the serving thread to CPU N (default: not pinned)")->check(CLI::Range(0, 1023));
   CLI::Option* ring = cmd->add_flag("--no-rx-ring", o->no_rx_ring,
                 "Raw socket: one recvfrom per frame instead of the receive ring shared with the kernel (PACKET_RX_RING, "

@@ -94,6 +94,13 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   }
   drive_module::DriveModule* drive_ = nullptr;
   mailbox::MailboxModule* mailbox_ = nullptr;
+  Nanos step_batch = 0;  // set_control_step_batch
+
+  void catch_up(Nanos now) {
+    if (drive_ == nullptr) return;
+    drive_->catch_up_now(now);
+    apply_fault(*drive_);
+  }
 
   std::uint32_t serviced_events() const {
     std::uint32_t events = kEsmEvents;
@@ -143,6 +150,7 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   }
 
   void on_irq(Nanos now) {
+    if (step_batch > 0) catch_up(now);
     watch_sii();
     const std::uint32_t events = pdi.read_u32(reg::kAlEventRequest);
     for (auto& m : modules) {
@@ -269,6 +277,20 @@ void SlaveFirmware::tick(Nanos now) {
 }
 
 Nanos SlaveFirmware::next_deadline() const { return impl_->next_deadline(); }
+
+void SlaveFirmware::set_control_step_batch(Nanos wait) {
+  impl_->step_batch = wait;
+  if (impl_->drive_ != nullptr) impl_->drive_->set_step_batch(wait);
+}
+
+Nanos SlaveFirmware::next_control_step() const {
+  return impl_->drive_ != nullptr ? impl_->drive_->engine().next_step() : std::numeric_limits<Nanos>::max();
+}
+
+void SlaveFirmware::catch_up(Nanos now) {
+  impl_->now_ = now;
+  impl_->catch_up(now);
+}
 
 void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_switch = id; }
 

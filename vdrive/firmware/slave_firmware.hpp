@@ -46,6 +46,17 @@ public:
   void tick(Nanos now);
   Nanos next_deadline() const;
 
+  // Batched control steps (real time): the drive's steps may wait up to `wait` for the next
+  // catch_up() instead of each being a deadline; every interrupt catches the drive up first, so the
+  // mailbox, the process data and the AL state machine see it as of that instant. 0, the default:
+  // each step is due at its own instant.
+  void set_control_step_batch(Nanos wait);
+  // Runs the drive's control steps due by `now` (nothing for a device without a drive).
+  void catch_up(Nanos now);
+  // The instant of the drive's next control step, whether or not the loop must wake for it;
+  // INT64_MAX without a drive.
+  Nanos next_control_step() const;
+
   // The drive's ID switches as Explicit Device ID (AL Control bit5) reports them in AL status
   // code: A6B rotary switch (low byte) + object 3740h (high byte), L5802-L5924; DS1000A-EC rotary
   // ID switch, L789-L795. Until set, the firmware reports the station alias register 0x0012.

@@ -202,6 +202,19 @@ void Network::tick(Nanos now, BetweenSlaves* between) {
   copy_wires();
 }
 
+void Network::set_control_step_batch(Nanos wait) {
+  step_batch_ = wait;
+  for (auto& slave : slaves_) slave->firmware->set_control_step_batch(wait);
+}
+
+void Network::catch_up(Nanos now, BetweenSlaves* between) {
+  for (auto& slave : slaves_) {
+    if (slave->firmware->next_control_step() > now) continue;
+    slave->firmware->catch_up(now);
+    if (between != nullptr) between->run();
+  }
+}
+
 Nanos Network::next_deadline() const {
   Nanos next = std::numeric_limits<Nanos>::max();
   for (const auto& slave : slaves_) {

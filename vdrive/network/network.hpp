@@ -98,6 +98,16 @@ public:
   void tick(Nanos now, BetweenSlaves* between = nullptr);
   // Earliest time tick() has work to do, or INT64_MAX.
   Nanos next_deadline() const;
+
+  // Batched control steps, for serving in real time: every drive's steps may wait up to `wait`
+  // (SlaveFirmware::set_control_step_batch) and run in a batch at the next interrupt or catch_up(),
+  // so the loop wakes for the bus and not for each 125 us step. 0 (the default): each step is a
+  // deadline of its own.
+  void set_control_step_batch(Nanos wait);
+  Nanos control_step_batch() const { return step_batch_; }
+  // Runs every drive's control steps due by `now`; `between` (optional) runs after each drive that
+  // had one.
+  void catch_up(Nanos now, BetweenSlaves* between = nullptr);
   // Switches every drive off and on again: ESC power-on reset (the EEPROM keeps its contents),
   // firmware restarts from Init with power-on values.
   void power_cycle(Nanos now);
@@ -142,6 +152,7 @@ private:
   std::vector<SignalAccess> signal_access_;
   std::vector<std::string> slave_names_;
   Segment segment_;
+  Nanos step_batch_ = 0;
 };
 
 }  // namespace vdrive::network

@@ -41,8 +41,11 @@ void serve_once(network::Network& network, link::Link& link, const Clock& clock,
                 LoopCounters& counters, LoopService* service) {
   Nanos now = clock.now();
   counters.stalls.check(network, now);  // late for the timers planned last round: a host stall
-  if (service != nullptr) service->poll(now);
   FrameOvertake overtake(network, link, clock, counters, now);
+  // Batched control steps run at every wake, whatever woke the loop, so a service (a sample, a
+  // fault, a web request) sees the drives as of now.
+  if (network.control_step_batch() > 0) network.catch_up(now, overtake.hook());
+  if (service != nullptr) service->poll(now);
   Nanos deadline = network.next_deadline();
   if (deadline <= now) {
     network.tick(now, overtake.hook());

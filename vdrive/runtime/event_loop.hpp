@@ -6,6 +6,9 @@
 // another thread (a status line) may read them. A round that finds the line's timers late beyond
 // a threshold records a host stall (LoopCounters::stalls, host_stalls.hpp).
 //
+// With batched control steps (Network::set_control_step_batch) the loop wakes for the bus, not for
+// each step: every round first catches the drives up, and the frame's interrupts do so again.
+//
 // serve() runs in real time until `stop` is set; run_until() is the same loop in virtual time
 // for tests and scenarios: it handles every frame already waiting and jumps the VirtualClock from
 // deadline to deadline.

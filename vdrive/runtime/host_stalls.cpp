@@ -86,9 +86,11 @@ void HostStalls::look(network::Network& network, Nanos now) {
         s.sync0_pulses = std::max(s.sync0_pulses, periods(now - due, c0));
       }
     }
-    if (const drive::DriveEngine* engine = network.firmware(i).drive(); engine != nullptr && engine->next_step() <= now) {
+    // Batched steps may wait that long by design; only what is later than that was the host's.
+    const drive::DriveEngine* engine = network.firmware(i).drive();
+    if (const Nanos due = engine != nullptr ? engine->next_step() + network.control_step_batch() : kNever; due <= now) {
       s.step_slaves |= bit;
-      s.control_steps = std::max(s.control_steps, periods(now - engine->next_step(), engine->control_period()));
+      s.control_steps = std::max(s.control_steps, periods(now - due, engine->control_period()));
     }
   }
   record(s);

@@ -175,7 +175,10 @@ void TouchProbe::step(std::uint32_t inputs_before, std::uint32_t inputs_now, con
   const double start_position = have_previous_ ? previous_position_ : s.position;
   const std::uint64_t start_time = have_previous_ ? previous_time_ns_ : system_time_ns;
   const double mid_position = 0.5 * (start_position + s.position);
-  const std::uint64_t mid_time = start_time + (system_time_ns - start_time) / 2;
+  // The DC times are the low 32 bits of the system time (60BAh-60BDh are 32 bits): the step's
+  // length survives their wrap-around every 4.3 s.
+  const std::uint64_t elapsed = static_cast<std::uint32_t>(system_time_ns - start_time);
+  const std::uint64_t mid_time = start_time + elapsed / 2;
 
   for (int i = 0; i < 2; ++i) {
     Channel& ch = channels_[i];
@@ -191,7 +194,7 @@ void TouchProbe::step(std::uint32_t inputs_before, std::uint32_t inputs_now, con
       position = s.index_position;
       const double travel = s.position - start_position;
       const double fraction = travel != 0.0 ? std::clamp((s.index_position - start_position) / travel, 0.0, 1.0) : 1.0;
-      time = start_time + static_cast<std::uint64_t>(fraction * double(system_time_ns - start_time));
+      time = start_time + static_cast<std::uint64_t>(fraction * double(elapsed));
     }
     if (rose && ch.rising && (ch.continuous || !ch.rising_done)) latch(i, true, position, time);
     if (fell && ch.falling && (ch.continuous || !ch.falling_done)) latch(i, false, position, time);

@@ -1,12 +1,11 @@
 #include "vdrive/firmware/drive/drive_module.hpp"
 
+#include <limits>
+
 #include "ethercat/registers.hpp"
 #include "vdrive/firmware/pdi.hpp"
 
 namespace vdrive::firmware::drive_module {
-namespace {
-}  // namespace
-
 DriveModule::DriveModule(FirmwareContext& context, const plant::PlantDescription& plant,
                          std::function<void(const ecat::coe::Emergency&)> emergency)
     : context_(context), plant_(plant) {
@@ -55,7 +54,10 @@ void DriveModule::tick(Nanos now) {
   catch_up(now);
 }
 
-Nanos DriveModule::next_deadline() const { return engine_->next_step(); }
+Nanos DriveModule::next_deadline() const {
+  const Nanos step = engine_->next_step();
+  return step > std::numeric_limits<Nanos>::max() - step_batch_ ? std::numeric_limits<Nanos>::max() : step + step_batch_;
+}
 
 void DriveModule::after_outputs(Nanos now) {
   catch_up(now);

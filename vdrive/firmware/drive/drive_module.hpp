@@ -9,6 +9,9 @@
 // al_status_code (A6B Err80.x/81.x/85.x, DS5C1 E-80x/E-81x/E-85x), whose clearing then waits for
 // the master's AL acknowledge; leaving Op while enabled without such an error is the product's
 // "ESM change" alarm (A6B Err88.2, DS5C1 E-882, DS1000A-EC FF80h).
+// Batched control steps (set_step_batch, real time only): the loop need not wake for each step;
+// a step waits up to that long and runs, with its own instant, in a batch at the next call that
+// catches the drive up (an interrupt, an exchange, a loop round: SlaveFirmware::catch_up).
 // Installed for products that list drive modes (6502h != 0).
 #include <memory>
 
@@ -32,6 +35,13 @@ public:
   void tick(Nanos now) override;
   Nanos next_deadline() const override;
 
+  // How long a due control step may wait for a catch-up before the loop must wake for it; 0 (the
+  // default): not at all, each step is a deadline of its own.
+  void set_step_batch(Nanos wait) { step_batch_ = wait; }
+  // Runs what tick() runs, whether or not it is due: the control steps due by `now` and the alarm
+  // for a new AL error, so an observer (the mailbox, a sample, a fault) sees the drive as of now.
+  void catch_up_now(Nanos now) { tick(now); }
+
   // Process-data hooks (ProcessDataModule::set_application).
   void after_outputs(Nanos now);
   void before_inputs(Nanos now);
@@ -52,6 +62,7 @@ private:
   std::unique_ptr<vdrive::drive::DriveEngine> engine_;
   vdrive::drive::MappedOutputs mapped_;  // scratch for outputs_mapped(): no allocation there
   std::uint16_t al_error_seen_ = 0;   // the AL status code already turned into an alarm
+  Nanos step_batch_ = 0;
 };
 
 }  // namespace vdrive::firmware::drive_module
