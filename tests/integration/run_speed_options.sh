@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Integration: `vdrive run --busy-poll-us 200 --cpu 0` (receive ring and time
 # slice by default), and then `vdrive run --no-rx-ring --slice-us 200` (recvfrom, frames
-# overtaking the firmware through rationed poll() peeks), serve a6b, ds5c1, ds1000a as before —
+# overtaking the firmware through rationed poll() peeks), and then `vdrive run --batch-steps-us 2000`
+# (control steps batched at the bus's events), serve a6b, ds5c1, ds1000a as before —
 # `vdrive-master op --dc` runs 2,000 cycles with zero wrong working counters against each — and
+# with batched steps every drive also follows a 4 s csp sine — and
 # `--cpu` naming a CPU that does not exist is refused with exit 2 and a one-line error naming the
 # option. (What these options save is measured by bench/turnaround/run.sh, not here.)
 # Usage: bash run_speed_options.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
@@ -37,6 +39,24 @@ ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --no-rx-ring --sl
 VDRIVE_PID=$!
 wait_for_line
 op_clean "--no-rx-ring --slice-us 200"
+
+# Batched control steps: the steps wait for the bus's events (SYNC0, frames) and run there. The
+# drives must follow the master's sine as they do with each step on time.
+kill "$VDRIVE_PID" && wait "$VDRIVE_PID" 2>/dev/null
+ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --rt-priority 80 --batch-steps-us 2000 --drive a6b \
+  --drive ds5c1 --drive ds1000a >"$WORK/vdrive.log" 2>&1 &
+VDRIVE_PID=$!
+wait_for_line
+grep -q "control steps batched within 2000 us" "$WORK/vdrive.log" || fail "--batch-steps-us 2000: the log does not say so"
+op_clean "--batch-steps-us 2000"
+"$MASTER" op --rt-priority 70 --iface "$M_IF" --dc --cycle-us 1000 --reply-timeout-us 200000 \
+  --sine --revolutions 0.25 --frequency 0.5 --seconds 4 >"$WORK/sine.txt" 2>"$WORK/sine.err"
+rc=$?
+cat "$WORK/sine.txt" "$WORK/sine.err"
+[ $rc -eq 0 ] || fail "--batch-steps-us 2000: vdrive-master op --sine exited $rc"
+ok=$(grep -Ec "^slave [0-9]+ @0x[0-9A-F]{4} [^:]*: ok, " "$WORK/sine.txt")
+[ "$ok" -eq 3 ] || fail "--batch-steps-us 2000: $ok of 3 drives followed the sine"
+echo "ok: --batch-steps-us 2000, 3 drives followed the sine"
 
 err=$(ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --cpu 1000 --drive a6b 2>&1 >/dev/null)
 rc=$?
