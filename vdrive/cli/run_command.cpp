@@ -38,6 +38,7 @@
 #include "vdrive/esi/esi_import.hpp"
 #include "vdrive/machine/eni_reader.hpp"
 #include "vdrive/machine/network_file.hpp"
+#include "vdrive/machine/network_file_part.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 #include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/runtime/loop_waker.hpp"
@@ -57,6 +58,9 @@ struct RunOptions {
   std::string next_iface;           // --next-iface: the line goes on out of the last slave's port 1 there
   std::string netns;                // --netns: the interfaces are in this network namespace
   long processes = 1;               // --processes: the line cut into N parts, one process and core each
+  bool processes_given = false;     // --processes on the command line (else a network file's `processes:`)
+  std::string line_part;            // --line-part FIRST:COUNT: a part of --processes serves these of the file's slaves
+  bool network_loaded = false;      // `network` and `drives` hold the network file or ENI already
   int ready_fd = -1;                // a part of --processes tells its parent here that it serves
   std::size_t later_slaves = 0;     // --processes, part 1: the slaves the other parts serve
   std::vector<std::string> drives;
@@ -268,6 +272,20 @@ void apply_network_file(const RunOptions& o, network::NetworkOptions& options) {
 
 void run(RunOptions o);
 
+// --line-part FIRST:COUNT (a child of --processes over a network file or ENI): only those slaves.
+void cut_to_part(RunOptions& o) {
+  unsigned long first = 0, count = 0;
+  char end = 0;
+  if (std::sscanf(o.line_part.c_str(), "%lu:%lu%c", &first, &count, &end) != 2 || count == 0 ||
+      first + count > o.network.slaves.size())
+    throw CliError(kExitBadArguments, fmt::format("--line-part {}: expected FIRST:COUNT within the {} slaves of {}",
+                                                  o.line_part, o.network.slaves.size(), o.network_file));
+  const std::vector<network::LinePart> parts{{0, first}, {first, count}, {first + count, o.network.slaves.size() - first - count}};
+  o.network = machine::line_part(o.network, parts, 1);
+  o.drives.clear();
+  for (const machine::NetworkSlave& sl : o.network.slaves) o.drives.push_back(sl.device);
+}
+
 // --plant N:FILE of the whole line, for the part holding slave N, renumbered within it.
 std::vector<std::string> plants_of_part(const std::vector<std::string>& plants, const std::vector<network::LinePart>& parts,
                                         std::size_t part, std::size_t slaves) {
@@ -282,8 +300,6 @@ std::vector<std::string> plants_of_part(const std::vector<std::string>& plants, 
 
 // --processes N: parts 2..N in child processes chained over veth pairs, part 1 served here.
 void run_in_parts(RunOptions o) {
-  if (!o.network_file.empty())
-    throw CliError(kExitBadArguments, "--processes: a network file or ENI is served in one process; give the line as --drive lists");
   if (!o.tap.empty()) throw CliError(kExitBadArguments, "--processes: serves on --iface, not --tap");
   if (o.drives.empty()) throw CliError(kExitBadArguments, "no slaves: give --drive (repeat)");
   check_products(o);
@@ -294,6 +310,14 @@ void run_in_parts(RunOptions o) {
   } catch (const std::invalid_argument& e) {
     throw CliError(kExitBadArguments, fmt::format("--processes {}: {}", o.processes, e.what()));
   }
+  const bool from_file = o.network_loaded;
+  if (from_file) {
+    try {
+      machine::check_cut(o.network, parts);
+    } catch (const machine::NetworkFileError& e) {
+      throw CliError(kExitBadArguments, fmt::format("--processes {}: {}", o.processes, e.what()));
+    }
+  }
   const unsigned cpus = std::max(1U, std::thread::hardware_concurrency());
   const int base_cpu = o.cpu >= 0 ? o.cpu : 0;
   const auto cpu_of = [&](std::size_t k) { return static_cast<int>((static_cast<unsigned>(base_cpu) + k) % cpus); };
@@ -302,9 +326,20 @@ void run_in_parts(RunOptions o) {
     std::vector<std::string> a{"run", "--iface", in};
     const std::string onward = k + 1 < parts.size() ? next : o.next_iface;
     if (!onward.empty()) a.insert(a.end(), {"--next-iface", onward});
-    a.push_back("--drive");
-    for (std::size_t i = parts[k].first; i < parts[k].first + parts[k].count; ++i) a.push_back(o.drives[i]);
-    for (const std::string& plant : plants_of_part(o.plants, parts, k, o.drives.size())) a.insert(a.end(), {"--plant", plant});
+    if (from_file) {
+      // The child reads the file itself and serves its part of it (the network's paths stay valid).
+      if (!o.eni.empty()) {
+        a.insert(a.end(), {"--eni", o.eni});
+        for (const std::string& dir : o.esi_dirs) a.insert(a.end(), {"--esi-dir", dir});
+      } else {
+        a.insert(a.end(), {"--network", o.network_file});
+      }
+      a.insert(a.end(), {"--line-part", fmt::format("{}:{}", parts[k].first, parts[k].count), "--processes", "1"});
+    } else {
+      a.push_back("--drive");
+      for (std::size_t i = parts[k].first; i < parts[k].first + parts[k].count; ++i) a.push_back(o.drives[i]);
+      for (const std::string& plant : plants_of_part(o.plants, parts, k, o.drives.size())) a.insert(a.end(), {"--plant", plant});
+    }
     a.insert(a.end(), {"--hop-delay", std::to_string(o.hop_delay), "--cpu", std::to_string(cpu_of(k)), "--fault-seed",
                        std::to_string(o.fault_seed), "--no-control", "--no-status", "--log-level", level});
     if (!o.profile_dir.empty()) a.insert(a.end(), {"--profile-dir", o.profile_dir});
@@ -323,6 +358,7 @@ void run_in_parts(RunOptions o) {
   first.processes = 1;
   first.drives.assign(o.drives.begin(), o.drives.begin() + static_cast<long>(parts[0].count));
   first.plants = plants_of_part(o.plants, parts, 0, o.drives.size());
+  if (from_file) first.network = machine::line_part(o.network, parts, 0);
   first.next_iface = others.first_onward();
   first.later_slaves = o.drives.size() - parts[0].count;
   first.cpu = cpu_of(0);
@@ -336,11 +372,7 @@ void run_in_parts(RunOptions o) {
 void run(RunOptions o) {
   if (!o.next_iface.empty() && (o.next_iface == o.iface || o.next_iface == o.tap))
     throw CliError(kExitBadArguments, fmt::format("--next-iface {}: the master is on that interface already", o.next_iface));
-  if (o.processes > 1) {
-    run_in_parts(std::move(o));
-    return;
-  }
-  if (!o.network_file.empty()) {
+  if (!o.network_file.empty() && !o.network_loaded) {
     if (!o.plants.empty()) throw CliError(kExitBadArguments, "--plant: with --network, a slave's plant is in the network file");
     try {
       o.network = machine::load_network_file(o.network_file, o.profile_dir);
@@ -349,7 +381,7 @@ void run(RunOptions o) {
     }
     for (const machine::NetworkSlave& s : o.network.slaves) o.drives.push_back(s.device);
   }
-  if (!o.eni.empty()) {
+  if (!o.eni.empty() && !o.network_loaded) {
     if (!o.plants.empty()) throw CliError(kExitBadArguments, "--plant: with --eni, write the network file (vdrive network --from-eni) and give plants there");
     try {
       machine::EniNetwork eni = machine::read_eni(o.eni, o.esi_dirs, o.profile_dir);
@@ -362,6 +394,15 @@ void run(RunOptions o) {
     }
     for (const machine::NetworkSlave& s : o.network.slaves) o.drives.push_back(s.device);
     o.network_file = o.eni;  // the rest as for a network file
+  }
+  if (!o.network_file.empty()) {
+    o.network_loaded = true;
+    if (o.network.processes != 0 && !o.processes_given) o.processes = static_cast<long>(o.network.processes);
+    if (!o.line_part.empty()) cut_to_part(o);
+  }
+  if (o.processes > 1) {
+    run_in_parts(std::move(o));
+    return;
   }
   if (o.drives.empty()) throw CliError(kExitBadArguments, "no slaves: give --drive (repeat), --network FILE or --eni FILE");
   check_products(o);
@@ -495,11 +536,12 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--netns", o->netns,
                   "Open the interfaces (--iface, --tap, --next-iface) inside network namespace NAME (ip netns); the "
                   "control socket, telemetry and web page stay in this one (docs/cli.md)");
-  cmd->add_option("--processes", o->processes,
+  CLI::Option* processes = cmd->add_option("--processes", o->processes,
                   "Cut the line into N consecutive parts, each served by its own process pinned to its own core, "
                   "chained over veth pairs made for the run (docs/scale-out.md); default 1")
       ->check(CLI::Range(1L, 64L));
   cmd->add_option("--ready-fd", o->ready_fd, "")->group("");  // a part of --processes tells its parent it serves
+  cmd->add_option("--line-part", o->line_part, "")->group("");  // a part of --processes over a network file or ENI
   cmd->add_option("--next-iface", o->next_iface,
                   "The line goes on through interface NAME: out of the last slave's port 1 to whatever is cabled "
                   "there (another vdrive, real slaves) and back (docs/scale-out.md)");
@@ -569,11 +611,12 @@ void add_run_command(CLI::App& app) {
       ->excludes(ring);
   cmd->add_flag("--no-qdisc-bypass", o->no_qdisc_bypass,
                 "Send through the qdisc layer (so tc sees replies); default bypasses it");
-  cmd->callback([o, slice] {
+  cmd->callback([o, slice, processes] {
     if (o->iface.empty() && o->tap.empty()) {
       throw CliError(kExitBadArguments, "run: one of --iface or --tap is required");
     }
     o->slice_given = slice->count() > 0;
+    o->processes_given = processes->count() > 0;
     run(*o);
   });
 }

@@ -15,6 +15,7 @@
 #include "common/number_text.hpp"
 #include "common/time_text.hpp"
 #include "vdrive/esi/esi_import.hpp"
+#include "vdrive/machine/network_file_part.hpp"
 #include "vdrive/machine/yaml_fault_source.hpp"
 #include "vdrive/profile/profile_loader.hpp"
 
@@ -124,7 +125,7 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
   if (!root.IsMap() && root.Mark().is_null())
     throw NetworkFileError(fmt::format("{}:1: no content: expected a mapping with 'slaves' (and 'wires', 'signals')", file));
   if (!root.IsMap()) r.fail(root, "expected a mapping with 'slaves' (and 'wires', 'signals')");
-  r.only_keys(root, "(top level)", {"slaves", "wires", "signals", "faults"});
+  r.only_keys(root, "(top level)", {"slaves", "wires", "signals", "faults", "processes"});
   const YAML::Node slaves = root["slaves"];
   if (!slaves || !slaves.IsSequence() || slaves.size() == 0) r.fail(root, "slaves: expected a list of at least one slave");
 
@@ -258,6 +259,13 @@ NetworkFile parse_network_file(const std::string& text_in, const std::string& fi
       a.origin = fmt::format("{}:{}", file, n.Mark().line + 1);
       f.faults.push_back(std::move(a));
     }
+  }
+  if (const YAML::Node processes = root["processes"]) {
+    f.processes = static_cast<std::size_t>(number(r, processes, "processes", 64));
+    if (f.processes == 0 || f.processes > f.slaves.size())
+      r.fail(processes, fmt::format("processes: {} parts for {} slave(s); give 1 to {}", f.processes, f.slaves.size(),
+                                    std::min<std::size_t>(f.slaves.size(), 64)));
+    check_cut(f, network::split_line(f.slaves.size(), f.processes));
   }
   return f;
 }

@@ -15,6 +15,7 @@
 //     door: di 0x6000:2                             # named for the control socket, scenarios, DDS
 //   faults:
 //     - {kind: link_down, slave: coupler, port: 1, at: 5s, duration: 200ms}
+//   processes: 2                                    # a line cut into parts (network_file_part.hpp)
 //
 // Paths (ESI files, plants) are relative to the network file. Every mistake is a
 // NetworkFileError "<file>:<line>: <field>: <what>".
@@ -59,6 +60,8 @@ struct NetworkFile {
   std::vector<network::SignalWire> wires;
   std::vector<network::NamedSignal> signals;
   std::vector<ArmedFault> faults;
+  // `processes: N`: the line served in N processes, as `vdrive run --processes N` (0: not given).
+  std::size_t processes = 0;
 };
 
 // The file's aliases, identities, topology, wires, signals and slave names as network options

@@ -1,0 +1,90 @@
+#include "vdrive/machine/network_file_part.hpp"
+
+#include <fmt/core.h>
+
+#include <optional>
+#include <string>
+
+namespace vdrive::machine {
+namespace {
+
+std::size_t part_holding(std::span<const network::LinePart> parts, std::size_t slave) {
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    if (slave >= parts[k].first && slave < parts[k].first + parts[k].count) return k;
+  return parts.size();
+}
+
+std::string describe_part(std::span<const network::LinePart> parts, std::size_t k) {
+  const network::LinePart& p = parts[k];
+  return p.count == 1 ? fmt::format("part {}, slave {}", k + 1, p.first + 1)
+                      : fmt::format("part {}, slaves {}-{}", k + 1, p.first + 1, p.first + p.count);
+}
+
+// The first slave whose uplink makes the topology more than a line (each slave on port 1 of the one
+// before, the first on the master), or none.
+std::optional<std::size_t> first_branch(const network::Topology& t) {
+  for (std::size_t i = 0; i < t.uplinks.size(); ++i) {
+    const network::Uplink& up = t.uplinks[i];
+    if (i == 0 ? up.parent != network::Uplink::kMaster : (up.parent != static_cast<int>(i - 1) || up.port != 1)) return i;
+  }
+  return std::nullopt;
+}
+
+// The slave a fault acts on (0-based), or none for the faults of the master's wire.
+std::optional<std::size_t> fault_slave(const fault::FaultSpec& spec) {
+  if (fault::info(spec.kind).layer == fault::Layer::wire && spec.kind != fault::FaultKind::link_down) return std::nullopt;
+  return static_cast<std::size_t>(spec.slave - 1);
+}
+
+}  // namespace
+
+void check_cut(const NetworkFile& file, std::span<const network::LinePart> parts) {
+  if (parts.size() <= 1) return;
+  if (const std::optional<std::size_t> i = first_branch(file.topology))
+    throw NetworkFileError(fmt::format("{}:{}: slaves[{}]: the slaves form a tree (parent, port); --processes cuts a "
+                                       "line, so a tree is served in one process",
+                                       file.file, file.slaves[*i].line, *i));
+  for (const network::SignalWire& w : file.wires) {
+    const std::size_t from = part_holding(parts, w.from.slave), to = part_holding(parts, w.to.slave);
+    if (from != to)
+      throw NetworkFileError(fmt::format("{}: joins slave {} ({}) and slave {} ({}); a wire is copied inside one "
+                                         "process, so --processes must keep both ends in one part",
+                                         w.name, w.from.slave + 1, describe_part(parts, from), w.to.slave + 1,
+                                         describe_part(parts, to)));
+  }
+  for (const ArmedFault& a : file.faults) {
+    if (a.spec.station != 0)
+      throw NetworkFileError(fmt::format("{}: a fault by station address cannot be given to one part of --processes "
+                                         "(the master sets the addresses when it runs); name the slave or give its position",
+                                         a.origin));
+  }
+}
+
+NetworkFile line_part(const NetworkFile& file, std::span<const network::LinePart> parts, std::size_t part) {
+  const network::LinePart& p = parts[part];
+  const auto inside = [&](std::size_t slave) { return slave >= p.first && slave < p.first + p.count; };
+  NetworkFile out;
+  out.file = file.file;
+  out.slaves.assign(file.slaves.begin() + static_cast<long>(p.first),
+                    file.slaves.begin() + static_cast<long>(p.first + p.count));
+  for (network::SignalWire w : file.wires) {
+    if (!inside(w.from.slave)) continue;
+    w.from.slave -= p.first;
+    w.to.slave -= p.first;
+    out.wires.push_back(std::move(w));
+  }
+  for (network::NamedSignal s : file.signals) {
+    if (!inside(s.point.slave)) continue;
+    s.point.slave -= p.first;
+    out.signals.push_back(std::move(s));
+  }
+  for (ArmedFault a : file.faults) {
+    const std::optional<std::size_t> slave = fault_slave(a.spec);
+    if (slave ? !inside(*slave) : part != 0) continue;
+    if (slave) a.spec.slave -= static_cast<int>(p.first);
+    out.faults.push_back(std::move(a));
+  }
+  return out;
+}
+
+}  // namespace vdrive::machine
