@@ -80,6 +80,21 @@ TEST(ControlProtocol, OtherOps) {
   EXPECT_EQ(c.id, 3);
 }
 
+// Part 1 of `vdrive run --processes` asks the other parts which slave has an address.
+TEST(ControlProtocol, FindStation) {
+  const ControlRequest r = parse_request(R"({"op":"find_station","station":"0x1003"})");
+  EXPECT_EQ(r.op, Op::find_station);
+  EXPECT_EQ(r.station, 0x1003);
+  EXPECT_EQ(parse_request(R"({"op":"find_station","station":4099})").station, 0x1003);
+  EXPECT_THAT(refusal(R"({"op":"find_station"})"), HasSubstr("\"station\" is missing"));
+  EXPECT_THAT(refusal(R"({"op":"find_station","station":"0x10000"})"), HasSubstr("expected a station address 0x0001..0xFFFF"));
+  EXPECT_THAT(refusal(R"({"op":"find_station","station":0})"), HasSubstr("expected a station address"));
+  ControlReply found;
+  found.slave = 3;
+  EXPECT_EQ(parse_reply(format_reply(found)).slave, 3);
+  EXPECT_EQ(format_reply(ControlReply{}).find("slave"), std::string::npos);  // no slave: not in the reply
+}
+
 TEST(ControlProtocol, SignalOps) {
   EXPECT_EQ(parse_request(R"({"op":"signals"})").op, Op::signals);
   const ControlRequest get = parse_request(R"({"op":"signal_get","signal":"di 0x6000:1"})");

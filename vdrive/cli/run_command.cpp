@@ -25,6 +25,7 @@
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/control_socket.hpp"
 #include "vdrive/control/fault_service.hpp"
+#include "vdrive/control/part_router.hpp"
 #include "vdrive/drive/product_plant.hpp"
 #include "vdrive/fault/impaired_link.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
@@ -63,6 +64,7 @@ struct RunOptions {
   bool network_loaded = false;      // `network` and `drives` hold the network file or ENI already
   int ready_fd = -1;                // a part of --processes tells its parent here that it serves
   std::size_t later_slaves = 0;     // --processes, part 1: the slaves the other parts serve
+  std::vector<control::RemotePart> later_parts;  // --processes, part 1: their control sockets
   std::vector<std::string> drives;
   std::string network_file;         // --network: the slaves, topology, aliases and wires of a network file
   std::string eni;                  // --eni: the network a master's ENI describes
@@ -102,11 +104,32 @@ std::string answer(control::FaultService& service, std::string_view line) {
   return control::format_reply(reply);
 }
 
+std::string control_path(const RunOptions& o) {
+  return o.control.empty() ? control::default_control_path(o.tap.empty() ? o.iface : o.tap) : o.control;
+}
+
+// --processes: part K's (from 2) private control socket beside part 1's: /run/vdrive/eth1.sock ->
+// /run/vdrive/eth1.part2.sock. Part 1's socket stays the run's one address (part_router.hpp).
+std::string part_control_path(const std::string& path, std::size_t part) {
+  constexpr std::string_view kSuffix = ".sock";
+  const bool sock = path.size() > kSuffix.size() && path.ends_with(kSuffix);
+  return fmt::format("{}.part{}{}", sock ? path.substr(0, path.size() - kSuffix.size()) : path, part, sock ? kSuffix : "");
+}
+
 std::unique_ptr<control::ControlServer> open_control(const RunOptions& o, control::FaultService& service) {
-  const std::string path = o.control.empty() ? control::default_control_path(o.tap.empty() ? o.iface : o.tap) : o.control;
+  const std::string path = control_path(o);
+  control::ControlServer::Handler handler = [&service](std::string_view line) { return answer(service, line); };
+  if (!o.later_parts.empty()) {
+    // Requests for the other parts' slaves go on to their sockets, on the socket's thread.
+    auto router = std::make_shared<control::PartRouter>(
+        o.drives.size(), o.later_parts,
+        [&service](const control::ControlRequest& r) { return service.call(r, 2'000'000'000); },
+        [](const std::string& to, std::string_view line, Nanos timeout) { return control::control_call(to, line, timeout); });
+    handler = [router](std::string_view line) { return router->answer(line); };
+  }
   try {
     return std::make_unique<control::ControlServer>(
-        path, [&service](std::string_view line) { return answer(service, line); },
+        path, std::move(handler),
         [](unsigned uid) {
           return control::format_reply(control::error_reply(
               control::ControlReply::Status::denied, fmt::format("uid {} may not control this vdrive (only uid {} or root)", uid, ::geteuid())));
@@ -341,7 +364,10 @@ void run_in_parts(RunOptions o) {
       for (const std::string& plant : plants_of_part(o.plants, parts, k, o.drives.size())) a.insert(a.end(), {"--plant", plant});
     }
     a.insert(a.end(), {"--hop-delay", std::to_string(o.hop_delay), "--cpu", std::to_string(cpu_of(k)), "--fault-seed",
-                       std::to_string(o.fault_seed), "--no-control", "--no-status", "--log-level", level});
+                       std::to_string(o.fault_seed), "--no-status", "--log-level", level});
+    // Its own control socket, which part 1's routes to (part_router.hpp); none if part 1 has none.
+    if (o.no_control) a.push_back("--no-control");
+    else a.insert(a.end(), {"--control", part_control_path(control_path(o), k + 1)});
     if (!o.profile_dir.empty()) a.insert(a.end(), {"--profile-dir", o.profile_dir});
     if (o.foe_strict) a.push_back("--foe-strict");
     if (o.rt_priority != 0) a.insert(a.end(), {"--rt-priority", std::to_string(o.rt_priority)});
@@ -353,6 +379,16 @@ void run_in_parts(RunOptions o) {
     a.insert(a.end(), {"--stall-threshold-ms", fmt::format("{}", o.stall_ms)});
     return a;
   };
+  // A part killed before it could remove its control socket leaves the file behind; once every
+  // part has ended (this outlives `others`), what nobody listens on is removed.
+  struct PartSockets {
+    std::vector<std::string> paths;
+    ~PartSockets() {
+      for (const std::string& p : paths) control::remove_if_stale(p);
+    }
+  } part_sockets;
+  for (std::size_t k = 1; k < parts.size() && !o.no_control; ++k)
+    part_sockets.paths.push_back(part_control_path(control_path(o), k + 1));
   PartProcesses others(parts, fmt::format("vd{}p", ::getpid() % 100000), o.netns, child_args);
   RunOptions first = o;
   first.processes = 1;
@@ -361,6 +397,10 @@ void run_in_parts(RunOptions o) {
   if (from_file) first.network = machine::line_part(o.network, parts, 0);
   first.next_iface = others.first_onward();
   first.later_slaves = o.drives.size() - parts[0].count;
+  if (!o.no_control) {
+    for (std::size_t k = 1; k < parts.size(); ++k)
+      first.later_parts.push_back({parts[k].first, parts[k].count, part_control_path(control_path(o), k + 1)});
+  }
   first.cpu = cpu_of(0);
   spdlog::info("the line of {} slaves in {} processes: part 1 (slaves 1-{}) here on CPU {}", o.drives.size(),
                parts.size(), parts[0].count, first.cpu);
@@ -470,6 +510,10 @@ void run(RunOptions o) {
     spdlog::info("the line goes on through {} (port 1 of slave {}; link {})", o.next_iface,
                  network->segment().onward_slave() + 1, onward_link->carrier() ? "up" : "down: the line ends here until it comes up");
   if (control) spdlog::info("fault control on {}", control->path());
+  for (std::size_t k = 0; control && k < o.later_parts.size(); ++k) {
+    const control::RemotePart& p = o.later_parts[k];
+    spdlog::info("faults for slaves {}-{} go on to part {}'s control socket {}", p.first + 1, p.first + p.count, k + 2, p.socket);
+  }
   runtime::LoopCounters counters;
   counters.stalls.set_floor(static_cast<Nanos>(o.stall_ms * 1e6));
   RunStatus status(o.status, *network, counters, &wire);  // the live status line (run_status.hpp)

@@ -122,13 +122,14 @@ ControlRequest parse_request(std::string_view line) {
     fail(fmt::format("not a JSON request: {}", e.what()));
   }
   if (!j.is_object()) fail("a request is a JSON object with an \"op\"");
-  constexpr std::string_view kOps = "inject, clear, clear_all, list, signal_get, signal_set, signals";
+  constexpr std::string_view kOps = "inject, clear, clear_all, list, signal_get, signal_set, signals, find_station";
   if (!j.contains("op") || !j.at("op").is_string()) fail(fmt::format("\"op\" is missing ({})", kOps));
   const std::string op = j.at("op").get<std::string>();
   const std::set<std::string> allowed = op == "inject"       ? std::set<std::string>{"op", "fault"}
                                         : op == "clear"      ? std::set<std::string>{"op", "id"}
                                         : op == "signal_get" ? std::set<std::string>{"op", "signal"}
                                         : op == "signal_set" ? std::set<std::string>{"op", "signal", "value"}
+                                        : op == "find_station" ? std::set<std::string>{"op", "station"}
                                                              : std::set<std::string>{"op"};
   ControlRequest r;
   if (op == "inject") r.op = ControlRequest::Op::inject;
@@ -138,6 +139,7 @@ ControlRequest parse_request(std::string_view line) {
   else if (op == "signal_get") r.op = ControlRequest::Op::signal_get;
   else if (op == "signal_set") r.op = ControlRequest::Op::signal_set;
   else if (op == "signals") r.op = ControlRequest::Op::signals;
+  else if (op == "find_station") r.op = ControlRequest::Op::find_station;
   else fail(fmt::format("unknown op \"{}\" ({})", op, kOps));
   for (const auto& [key, value] : j.items()) {
     if (!allowed.contains(key)) fail(fmt::format("\"{}\" does not belong in a \"{}\" request", key, op));
@@ -150,6 +152,13 @@ ControlRequest parse_request(std::string_view line) {
         j.at("id").get<std::int64_t>() > std::numeric_limits<int>::max())
       fail("\"id\" must be the id of an active fault (an integer from 1)");
     r.id = j.at("id").get<int>();
+  } else if (r.op == ControlRequest::Op::find_station) {
+    if (!j.contains("station")) fail("\"station\" is missing from the find_station request");
+    try {
+      r.station = static_cast<std::uint16_t>(integer(j.at("station"), "station", 1, 0xFFFF));
+    } catch (const ProtocolError&) {
+      fail(fmt::format("\"station\": expected a station address 0x0001..0xFFFF, got {}", j.at("station").dump()));
+    }
   } else if (r.op == ControlRequest::Op::signal_get || r.op == ControlRequest::Op::signal_set) {
     if (!j.contains("signal") || !j.at("signal").is_string() || j.at("signal").get<std::string>().empty())
       fail("\"signal\" must name a signal of the network file or a point (\"di 0x6000:1\", \"x.home\")");
@@ -175,6 +184,7 @@ std::string format_reply(const ControlReply& reply) {
   }
   if (reply.id != 0) j["id"] = reply.id;
   j["cleared"] = reply.cleared;
+  if (reply.slave != 0) j["slave"] = reply.slave;
   json faults = json::array();
   for (const FaultStatus& f : reply.faults) {
     json o{{"id", f.id}, {"kind", f.kind}, {"description", f.description}, {"elapsed_ns", f.elapsed}};
@@ -205,6 +215,7 @@ ControlReply parse_reply(std::string_view line) {
     }
     r.id = j.value("id", 0);
     r.cleared = j.value("cleared", 0);
+    r.slave = j.value("slave", 0);
     for (const json& f : j.value("faults", json::array())) {
       const json& rem = f.at("remaining_ns");
       r.faults.push_back({f.at("id").get<int>(), f.at("kind").get<std::string>(), f.at("description").get<std::string>(),

@@ -5,6 +5,8 @@
 //   {"op":"clear","id":3}   {"op":"clear_all"}   {"op":"list"}
 //   {"op":"signal_get","signal":"door"}   {"op":"signal_set","signal":"x.home","value":1}
 //   {"op":"signals"}
+//   {"op":"find_station","station":"0x1003"}  -> {"ok":true,"slave":3,...}: which slave here has
+//   that station address (part 1 of `vdrive run --processes` asks the other parts, part_router.hpp)
 // The fault's fields are a scenario file's (kind, slave, port, duration, direction, probability,
 // delay, count, abort_code, code, position, load_scale, force), times as there ("250ms").
 // Replies: {"ok":true,...} or {"ok":false,"status":"bad_request|denied|failed","error":"..."}.

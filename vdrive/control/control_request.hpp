@@ -1,6 +1,7 @@
 #pragma once
 // What the runtime control channel carries between its thread and the event loop: a request
-// (inject a fault, clear one or all, list them; read, set or list signals) and its reply. Parsed
+// (inject a fault, clear one or all, list them; read, set or list signals; which slave has a
+// station address, asked by part 1 of `vdrive run --processes` of the others) and its reply. Parsed
 // from and formatted to JSON lines by control_protocol.hpp; carried out by FaultService
 // (fault_service.hpp), signals by signal_requests.hpp.
 #include <cstdint>
@@ -13,12 +14,13 @@
 namespace vdrive::control {
 
 struct ControlRequest {
-  enum class Op : std::uint8_t { inject, clear, clear_all, list, signal_get, signal_set, signals };
+  enum class Op : std::uint8_t { inject, clear, clear_all, list, signal_get, signal_set, signals, find_station };
   Op op = Op::list;
   fault::FaultSpec fault;  // inject
   int id = 0;              // clear
   std::string signal;      // signal_get, signal_set: a named signal or a point ("di 0x6000:1", "x.home")
   std::int64_t value = 0;  // signal_set
+  std::uint16_t station = 0;  // find_station: a station address the master set
   std::uint64_t seq = 0;   // matches a reply to its request (set by FaultService::call)
 };
 
@@ -45,6 +47,7 @@ struct ControlReply {
   std::string error;
   int id = 0;                        // inject: the new fault's id (0 for one-shot faults)
   int cleared = 0;                   // clear_all: how many
+  int slave = 0;                     // find_station: the slave (from 1) that has the address
   std::vector<FaultStatus> faults;   // list
   std::vector<SignalStatus> signals; // signal_get, signal_set (the value after the write), signals
   std::uint64_t seq = 0;

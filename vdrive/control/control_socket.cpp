@@ -193,6 +193,13 @@ void ControlServer::serve_one(int client) {
   write_all(client, reply + "\n");
 }
 
+void remove_if_stale(const std::string& path) {
+  try {
+    remove_stale(path);
+  } catch (const ControlSocketError&) {  // live, or not a socket: not ours to remove
+  }
+}
+
 std::string control_call(const std::string& path, std::string_view line, Nanos timeout) {
   const int fd = connect_to(path);
   if (fd < 0) {

@@ -66,6 +66,10 @@ private:
   std::thread thread_;
 };
 
+// Removes the socket file at `path` if nobody listens there (its server was killed before it could
+// remove it); leaves a live one, or anything that is not a socket. Never throws.
+void remove_if_stale(const std::string& path);
+
 // One round trip: connects to `path`, sends `line`, returns the reply line. Throws
 // ControlSocketError naming the path (no_server: nothing listens there).
 std::string control_call(const std::string& path, std::string_view line, Nanos timeout);

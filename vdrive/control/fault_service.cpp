@@ -15,6 +15,7 @@
 #include "common/clock.hpp"
 #include "vdrive/control/signal_requests.hpp"
 #include "vdrive/fault/impaired_link.hpp"
+#include "vdrive/network/slave_lookup.hpp"
 
 namespace vdrive::control {
 namespace {
@@ -101,6 +102,13 @@ ControlReply FaultService::handle(const ControlRequest& r, Nanos now) {
       case ControlRequest::Op::signal_set:
       case ControlRequest::Op::signals:
         break;  // above
+      case ControlRequest::Op::find_station:
+        try {
+          reply.slave = static_cast<int>(network::find_slave(network_, {ecat::SlaveRef::Kind::address, r.station})) + 1;
+        } catch (const std::invalid_argument& e) {
+          return error_reply(ControlReply::Status::bad_request, e.what());
+        }
+        return reply;  // nothing changed
       case ControlRequest::Op::list:
         for (const fault::ActiveFault& f : injector_.active()) {
           reply.faults.push_back({f.id, std::string(fault::info(f.spec.kind).name), fault::describe(f.spec),

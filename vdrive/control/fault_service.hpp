@@ -1,6 +1,7 @@
 #pragma once
 // FaultService: runtime control on the event loop's thread: faults (it owns the FaultInjector of
-// a served network) and signals (signal_requests.hpp). Other threads (the control socket's) hand it requests with call(), which the
+// a served network), signals (signal_requests.hpp) and which slave has a station address
+// (find_station, for part 1 of `vdrive run --processes`: part_router.hpp). Other threads (the control socket's) hand it requests with call(), which the
 // loop picks up in poll() through a lock-free SPSC queue and answers through another, waking
 // the caller with an eventfd. poll() with nothing pending is one atomic load plus a deadline
 // compare; faults with a duration end at their deadline (next_deadline() joins the loop's).

@@ -83,7 +83,8 @@ void FaultInjector::refuse_slave(const FaultSpec& s, int slave) const {
   const std::size_t n = network_.size();
   if (static_cast<std::size_t>(slave) <= n + later_slaves_)
     throw FaultError(fmt::format("{}: slave {} is served by another process of this run (--processes); faults reach "
-                                 "this process's slaves, 1 to {}",
+                                 "this process's slaves, 1 to {} (vdrive fault reaches every part through the run's "
+                                 "control socket)",
                                  describe(s), slave, n));
   if (s.kind == FaultKind::link_down)
     throw FaultError(fmt::format("{}: the network has cables into slaves 1..{}", describe(s), n + later_slaves_));

@@ -55,6 +55,8 @@ public:
 
   // The slaves after this network's last that other processes of the same run serve (`vdrive run
   // --processes`): a fault for one of them is refused saying so, not as a slave the line lacks.
+  // Part 1's control socket routes such faults to their part first (control/part_router.hpp), so
+  // this refusal is what the front ends that act on part 1 alone (web page, DDS) answer.
   void set_later_slaves(std::size_t count) { later_slaves_ = count; }
 
 private:

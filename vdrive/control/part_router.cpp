@@ -1,0 +1,240 @@
+// Part 1's control socket routing requests over the parts of `vdrive run --processes`. See
+// part_router.hpp.
+#include "vdrive/control/part_router.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <cctype>
+#include <nlohmann/json.hpp>
+
+#include "ethercat/slave_ref.hpp"
+#include "vdrive/control/control_protocol.hpp"
+#include "vdrive/control/control_socket.hpp"
+#include "vdrive/control/run_fault_id.hpp"
+#include "vdrive/fault/fault_spec.hpp"
+
+namespace vdrive::control {
+namespace {
+
+using nlohmann::json;
+using Status = ControlReply::Status;
+
+std::string op_line(std::string_view op) { return json{{"op", op}}.dump(); }
+
+// find_slave's "(the line has 0x1001, 0x1002)" is one part's addresses, not the line's.
+std::string part_says(std::string name, const std::string& error) {
+  std::string text = error;
+  if (const std::size_t at = text.find("(the line has "); at != std::string::npos) text.replace(at, 14, "(it has ");
+  return name + ": " + text;
+}
+
+std::string join(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
+
+}  // namespace
+
+std::string shift_slave_numbers(std::string_view text, std::size_t offset) {
+  constexpr std::string_view kWord = "slave ";
+  std::string out;
+  out.reserve(text.size() + 8);
+  std::size_t at = 0;
+  for (;;) {
+    const std::size_t found = text.find(kWord, at);
+    if (found == std::string_view::npos) break;
+    std::size_t digits = found + kWord.size();
+    out.append(text.substr(at, digits - at));
+    std::size_t end = digits;
+    while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end])) != 0) ++end;
+    // "slave 0x1003" is an address, the same in every part; "slave 12" a position here.
+    const bool address = end == digits + 1 && text[digits] == '0' && end < text.size() && (text[end] == 'x' || text[end] == 'X');
+    if (end == digits || address || end - digits > 9) {
+      at = digits;
+      continue;
+    }
+    out += std::to_string(std::stoul(std::string(text.substr(digits, end - digits))) + offset);
+    at = end;
+  }
+  out.append(text.substr(at));
+  return out;
+}
+
+PartRouter::PartRouter(std::size_t own_slaves, std::vector<RemotePart> later, Local local, Call call, Nanos timeout)
+    : own_slaves_(own_slaves), later_(std::move(later)), local_(std::move(local)), call_(std::move(call)), timeout_(timeout) {}
+
+std::string PartRouter::part_name(std::size_t part) const {
+  const std::size_t first = first_of(part);
+  const std::size_t count = part == 0 ? own_slaves_ : later_[part - 1].count;
+  return count == 1 ? fmt::format("part {} (slave {})", part + 1, first + 1)
+                    : fmt::format("part {} (slaves {}-{})", part + 1, first + 1, first + count);
+}
+
+std::string PartRouter::answer(std::string_view line) {
+  ControlReply reply;
+  try {
+    reply = route(parse_request(line), line);
+  } catch (const ProtocolError& e) {
+    reply = error_reply(Status::bad_request, e.what());
+  }
+  if (!reply.ok()) spdlog::warn("control request refused: {}", reply.error);
+  return format_reply(reply);
+}
+
+ControlReply PartRouter::route(const ControlRequest& r, std::string_view line) {
+  switch (r.op) {
+    case ControlRequest::Op::inject: return inject(r, line);
+    case ControlRequest::Op::clear: return clear(r);
+    case ControlRequest::Op::clear_all:
+    case ControlRequest::Op::list: return fan_out(r);
+    case ControlRequest::Op::find_station: return find_station(r, line);
+    case ControlRequest::Op::signal_get:
+    case ControlRequest::Op::signal_set:
+    case ControlRequest::Op::signals: break;  // a network file's signals; --processes serves none
+  }
+  return local_(r);
+}
+
+ControlReply PartRouter::inject(const ControlRequest& r, std::string_view line) {
+  const fault::FaultSpec& s = r.fault;
+  const bool at_a_slave = fault::info(s.kind).layer != fault::Layer::wire || s.kind == fault::FaultKind::link_down;
+  if (at_a_slave && s.slave == 0 && s.station != 0) return inject_at_station(r, line);
+  std::size_t part = 0;
+  if (at_a_slave && s.slave > 0) {
+    for (std::size_t k = 1; k < parts(); ++k) {
+      const RemotePart& p = later_[k - 1];
+      if (static_cast<std::size_t>(s.slave) > p.first && static_cast<std::size_t>(s.slave) <= p.first + p.count) part = k;
+    }
+  }
+  // Wire faults act at part 1's port to the master, for the whole line; a position beyond the
+  // line is refused here, where the injector knows the line's length (set_later_slaves).
+  if (part == 0) {
+    ControlReply reply = local_(r);
+    reply.id = run_fault_id(0, reply.id, parts());
+    return reply;
+  }
+  json j = json::parse(line);
+  j["fault"]["slave"] = static_cast<std::size_t>(s.slave) - first_of(part);
+  ControlReply reply = forward(part, j.dump());
+  if (reply.ok())
+    spdlog::info("fault {} injected in {}: {}", reply.id, part_name(part), fault::describe(s));
+  return reply;
+}
+
+ControlReply PartRouter::inject_at_station(const ControlRequest& r, std::string_view line) {
+  ControlRequest where;
+  where.op = ControlRequest::Op::find_station;
+  where.station = r.fault.station;
+  ControlReply here = local_(where);
+  if (here.ok()) {
+    ControlReply reply = local_(r);
+    reply.id = run_fault_id(0, reply.id, parts());
+    return reply;
+  }
+  if (here.status != Status::bad_request) return here;
+  std::vector<std::string> not_found{part_says(part_name(0), here.error)};
+  std::vector<std::string> silent;
+  const std::string ask = json{{"op", "find_station"}, {"station", ecat::hex_address(r.fault.station)}}.dump();
+  for (std::size_t k = 1; k < parts(); ++k) {
+    const ControlReply there = forward(k, ask);
+    if (there.ok()) {
+      // Forwarded as given: that part finds the address itself when the fault starts.
+      ControlReply reply = forward(k, std::string(line));
+      if (reply.ok()) spdlog::info("fault {} injected in {}: {}", reply.id, part_name(k), fault::describe(r.fault));
+      return reply;
+    }
+    (there.status == Status::bad_request ? not_found : silent).push_back(there.status == Status::bad_request
+                                                                            ? part_says(part_name(k), there.error)
+                                                                            : there.error);
+  }
+  const std::string what = fmt::format("{}: no part of this run's line has station address {} ({})", fault::describe(r.fault),
+                                       ecat::hex_address(r.fault.station), join(not_found));
+  if (!silent.empty()) return error_reply(Status::failed, fmt::format("{}; {}", what, join(silent)));
+  return error_reply(Status::bad_request, what);
+}
+
+ControlReply PartRouter::clear(const ControlRequest& r) {
+  const PartFaultId at = part_fault_id(r.id, parts());
+  ControlReply reply;
+  if (at.part == 0) {
+    ControlRequest own = r;
+    own.id = at.id;
+    reply = local_(own);
+  } else {
+    reply = forward(at.part, json{{"op", "clear"}, {"id", at.id}}.dump());
+    if (reply.ok()) spdlog::info("fault {} cleared in {}", r.id, part_name(at.part));
+  }
+  // The part's refusal names its own id; the user gave the run-wide one.
+  if (reply.status == Status::bad_request) return error_reply(Status::bad_request, fmt::format("no active fault {}", r.id));
+  return reply;
+}
+
+ControlReply PartRouter::fan_out(const ControlRequest& r) {
+  ControlReply merged = local_(r);
+  if (!merged.ok()) return merged;
+  for (FaultStatus& f : merged.faults) f.id = run_fault_id(0, f.id, parts());
+  std::vector<std::string> silent;
+  const std::string ask = r.op == ControlRequest::Op::list ? op_line("list") : op_line("clear_all");
+  for (std::size_t k = 1; k < parts(); ++k) {
+    ControlReply there = forward(k, ask);
+    if (!there.ok()) {
+      silent.push_back(there.error);
+      continue;
+    }
+    merged.cleared += there.cleared;
+    for (FaultStatus& f : there.faults) merged.faults.push_back(std::move(f));
+  }
+  if (silent.empty()) return merged;
+  // A part that does not answer is an error, but the user still learns what the others did.
+  std::string done;
+  if (r.op == ControlRequest::Op::clear_all) {
+    done = fmt::format("{} fault(s) cleared in the other parts", merged.cleared);
+  } else {
+    std::vector<std::string> listed;
+    for (const FaultStatus& f : merged.faults) listed.push_back(fmt::format("{} {}", f.id, f.description));
+    done = listed.empty() ? "the other parts have no active faults"
+                          : fmt::format("the other parts' active faults: {}", fmt::join(listed, ", "));
+  }
+  return error_reply(Status::failed, fmt::format("{}; {}", join(silent), done));
+}
+
+ControlReply PartRouter::find_station(const ControlRequest& r, std::string_view line) {
+  ControlReply here = local_(r);
+  if (here.ok() || here.status != Status::bad_request) return here;
+  std::vector<std::string> not_found{part_says(part_name(0), here.error)};
+  for (std::size_t k = 1; k < parts(); ++k) {
+    ControlReply there = forward(k, std::string(line));
+    if (there.ok()) return there;
+    not_found.push_back(there.status == Status::bad_request ? part_says(part_name(k), there.error) : there.error);
+  }
+  return error_reply(Status::bad_request, fmt::format("no part of this run's line has station address {} ({})",
+                                                      ecat::hex_address(r.station), join(not_found)));
+}
+
+ControlReply PartRouter::forward(std::size_t part, const std::string& line) {
+  const RemotePart& p = later_[part - 1];
+  ControlReply reply;
+  try {
+    reply = parse_reply(call_(p.socket, line, timeout_));
+  } catch (const ControlSocketError& e) {
+    return error_reply(Status::failed, fmt::format("{} does not answer (has it ended?): {}", part_name(part), e.what()));
+  } catch (const ProtocolError& e) {
+    return error_reply(Status::failed, fmt::format("{}: {}", part_name(part), e.what()));
+  }
+  if (!reply.ok()) {
+    reply.error = shift_slave_numbers(reply.error, p.first);
+    return reply;
+  }
+  reply.id = run_fault_id(part, reply.id, parts());
+  if (reply.slave != 0) reply.slave += static_cast<int>(p.first);
+  for (FaultStatus& f : reply.faults) {
+    f.id = run_fault_id(part, f.id, parts());
+    f.description = shift_slave_numbers(f.description, p.first);
+  }
+  return reply;
+}
+
+}  // namespace vdrive::control
