@@ -1,12 +1,14 @@
 // Batched control steps (Network::set_control_step_batch): the loop need not wake for each drive's
 // control step; the steps wait up to the batch for an interrupt or a loop round and then run, each
-// at its own instant. A master sees exactly the process data it sees with steps on time; every
-// interrupt catches the drive up before the firmware answers it; a real-time round catches the
-// drives up before its services look at them; without a batch nothing changes.
+// at its own instant, the drives one step each in turn. A master sees exactly the process data it
+// sees with steps on time; every interrupt catches the drive up before the firmware answers it; a
+// real-time round catches the drives up before its services look at them; without a batch nothing
+// changes.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -75,6 +77,30 @@ TEST_F(BatchedSteps, ARealTimeRoundCatchesTheDrivesUpBeforeItsServicesLook) {
   } look(drive());
   serve_once(net_, line_, clock_, clock_.now(), counters_, &look);
   EXPECT_GT(look.seen, 30 * kMs) << "the service saw the drive as of its round";
+}
+
+// A frame may overtake a batch after any one step: the drives catch up one step each in turn,
+// oldest first, with the hook between every two steps.
+TEST(BatchedStepsCatchUp, TheDrivesCatchUpOneStepEachInTurn) {
+  VirtualClock clock(0);
+  network::Network net(std::vector<std::string>{"a6b", "ds5c1"}, clock);
+  net.set_control_step_batch(10 * kMs);
+  const Nanos period = 125'000;
+  const Nanos first = net.firmware(0).next_control_step();
+  ASSERT_EQ(net.firmware(1).next_control_step(), first);
+  struct Record final : network::BetweenSlaves {
+    explicit Record(network::Network& n) : net(n) {}
+    void run() override { seen.push_back({net.firmware(0).next_control_step(), net.firmware(1).next_control_step()}); }
+    network::Network& net;
+    std::vector<std::pair<Nanos, Nanos>> seen;
+  } record(net);
+  clock.set(first + 2 * period);
+  net.catch_up(clock.now(), &record);
+  const std::vector<std::pair<Nanos, Nanos>> expected{
+      {first + period, first},          {first + period, first + period},
+      {first + 2 * period, first + period}, {first + 2 * period, first + 2 * period},
+      {first + 3 * period, first + 2 * period}, {first + 3 * period, first + 3 * period}};
+  EXPECT_EQ(record.seen, expected);
 }
 
 // The project master takes three drives to Op with DC at 1 ms and follows a sine for 400 cycles,

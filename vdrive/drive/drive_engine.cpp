@@ -224,15 +224,20 @@ bool DriveEngine::main_power_present() const {
 }
 
 void DriveEngine::advance_to(Nanos now, const BusState& bus) {
-  if (now - next_step_ > kMaxCatchUp) next_step_ = now - kMaxCatchUp;
-  BusState at = bus;
-  while (next_step_ <= now) {
-    // `bus` was read at `now`; a step caught up late (a batch, a late wake) has the DC time of its
-    // own instant, so a touch probe latches when the edge happened, not when the step ran.
-    at.system_time_ns = bus.system_time_ns - static_cast<std::uint64_t>(now - next_step_);
-    step(next_step_, at);
-    next_step_ += period_;
+  while (advance_one(now, bus)) {
   }
+}
+
+bool DriveEngine::advance_one(Nanos now, const BusState& bus) {
+  if (next_step_ > now) return false;
+  if (now - next_step_ > kMaxCatchUp) next_step_ = now - kMaxCatchUp;
+  // `bus` was read at `now`; a step caught up late (a batch, a late wake) has the DC time of its
+  // own instant, so a touch probe latches when the edge happened, not when the step ran.
+  BusState at = bus;
+  at.system_time_ns = bus.system_time_ns - static_cast<std::uint64_t>(now - next_step_);
+  step(next_step_, at);
+  next_step_ += period_;
+  return true;
 }
 
 AxisSample DriveEngine::measure(Nanos t, const plant::AxisFeedback& fb) const {

@@ -67,8 +67,12 @@ public:
   void outputs_taken(Nanos now);
   // A PDO mapping became effective (PreOp->SafeOp): the objects its RxPDO carries every cycle.
   void outputs_mapped(const MappedOutputs& outputs);
-  // Runs every control step due up to `now`.
+  // Runs every control step due up to `now`; `bus` as it is at `now` (each step gets the DC time
+  // of its own instant).
   void advance_to(Nanos now, const BusState& bus);
+  // Runs the next control step if it is due by `now` (one at most, so a caller can interleave the
+  // drives of a line step by step); true if it ran one.
+  bool advance_one(Nanos now, const BusState& bus);
   Nanos next_step() const { return next_step_; }
   Nanos control_period() const { return period_; }
 

@@ -287,6 +287,14 @@ Nanos SlaveFirmware::next_control_step() const {
   return impl_->drive_ != nullptr ? impl_->drive_->engine().next_step() : std::numeric_limits<Nanos>::max();
 }
 
+bool SlaveFirmware::step_once(Nanos now) {
+  impl_->now_ = now;
+  if (impl_->drive_ == nullptr) return false;
+  const bool ran = impl_->drive_->step_once(now);
+  impl_->apply_fault(*impl_->drive_);
+  return ran;
+}
+
 void SlaveFirmware::catch_up(Nanos now) {
   impl_->now_ = now;
   impl_->catch_up(now);

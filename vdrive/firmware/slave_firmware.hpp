@@ -53,6 +53,8 @@ public:
   void set_control_step_batch(Nanos wait);
   // Runs the drive's control steps due by `now` (nothing for a device without a drive).
   void catch_up(Nanos now);
+  // Runs the drive's next control step if it is due by `now`; true if one ran.
+  bool step_once(Nanos now);
   // The instant of the drive's next control step, whether or not the loop must wake for it;
   // INT64_MAX without a drive.
   Nanos next_control_step() const;

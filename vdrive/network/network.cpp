@@ -181,6 +181,7 @@ bool Network::process_frame(std::span<std::uint8_t> ethernet_frame, Nanos now) {
 }
 
 void Network::service_irqs(Nanos now, BetweenSlaves* between) {
+  if (step_batch_ > 0) catch_up(now, between);  // what the interrupts find is the drives as of now
   for (auto& slave : slaves_) {
     if (slave->esc->pdi_irq() == 0) continue;
     slave->firmware->on_irq(now);
@@ -190,6 +191,7 @@ void Network::service_irqs(Nanos now, BetweenSlaves* between) {
 }
 
 void Network::tick(Nanos now, BetweenSlaves* between) {
+  if (step_batch_ > 0) catch_up(now, between);  // before SYNC0 is serviced, as steps on time are
   for (auto& slave : slaves_) {
     if (slave->esc->next_deadline() <= now) slave->esc->tick(now);
   }
@@ -207,11 +209,18 @@ void Network::set_control_step_batch(Nanos wait) {
   for (auto& slave : slaves_) slave->firmware->set_control_step_batch(wait);
 }
 
+// Step by step across the drives, oldest step first: a frame that arrives meanwhile overtakes
+// after one drive's one step, as it does between steps on time, not after a drive's whole batch.
 void Network::catch_up(Nanos now, BetweenSlaves* between) {
-  for (auto& slave : slaves_) {
-    if (slave->firmware->next_control_step() > now) continue;
-    slave->firmware->catch_up(now);
-    if (between != nullptr) between->run();
+  for (;;) {
+    Nanos oldest = std::numeric_limits<Nanos>::max();
+    for (const auto& slave : slaves_) oldest = std::min(oldest, slave->firmware->next_control_step());
+    if (oldest > now) return;
+    for (auto& slave : slaves_) {
+      if (slave->firmware->next_control_step() > oldest) continue;
+      slave->firmware->step_once(now);
+      if (between != nullptr) between->run();
+    }
   }
 }
 

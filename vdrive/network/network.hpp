@@ -105,8 +105,9 @@ public:
   // deadline of its own.
   void set_control_step_batch(Nanos wait);
   Nanos control_step_batch() const { return step_batch_; }
-  // Runs every drive's control steps due by `now`; `between` (optional) runs after each drive that
-  // had one.
+  // Runs every drive's control steps due by `now`, one step of each drive at a time, oldest first;
+  // `between` (optional) runs after each step. With a batch, tick() and service_irqs() do this
+  // first, so a frame overtakes a batch as finely as it does steps on time.
   void catch_up(Nanos now, BetweenSlaves* between = nullptr);
   // Switches every drive off and on again: ESC power-on reset (the EEPROM keeps its contents),
   // firmware restarts from Init with power-on values.

@@ -43,6 +43,11 @@ void DriveModule::catch_up(Nanos now) {
   if (engine_->next_step() <= now) engine_->advance_to(now, bus());
 }
 
+bool DriveModule::step_once(Nanos now) {
+  raise_al_error(now);
+  return engine_->next_step() <= now && engine_->advance_one(now, bus());
+}
+
 void DriveModule::entered(ecat::AlState from, ecat::AlState to, Nanos now) {
   catch_up(now);
   const bool by_error = raise_al_error(now);

@@ -41,6 +41,8 @@ public:
   // Runs what tick() runs, whether or not it is due: the control steps due by `now` and the alarm
   // for a new AL error, so an observer (the mailbox, a sample, a fault) sees the drive as of now.
   void catch_up_now(Nanos now) { tick(now); }
+  // The same for one control step at most; true if one ran.
+  bool step_once(Nanos now);
 
   // Process-data hooks (ProcessDataModule::set_application).
   void after_outputs(Nanos now);
