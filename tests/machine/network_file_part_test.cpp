@@ -92,7 +92,8 @@ TEST(NetworkFilePart, ATreeIsServedInOneProcess) {
     machine::check_cut(bench, network::split_line(4, 2));
     FAIL() << "a tree cut in two";
   } catch (const machine::NetworkFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("bench.yaml:8: slaves[2]: the slaves form a tree (parent, port); --processes cuts a line"),
+    EXPECT_NE(std::string(e.what()).find("bench.yaml:8: slave 3 (di) is cabled to port 3 of slave 1 (coupler): the slaves form a tree; "
+                                    "--processes cuts a line"),
               std::string::npos)
         << e.what();
   }

@@ -435,6 +435,8 @@ void run(RunOptions o) {
     for (const machine::NetworkSlave& s : o.network.slaves) o.drives.push_back(s.device);
     o.network_file = o.eni;  // the rest as for a network file
   }
+  if (!o.line_part.empty() && o.network_file.empty())
+    throw CliError(kExitBadArguments, "--line-part: a part of a --network or --eni file; give one");
   if (!o.network_file.empty()) {
     o.network_loaded = true;
     if (o.network.processes != 0 && !o.processes_given) o.processes = static_cast<long>(o.network.processes);

@@ -40,10 +40,16 @@ std::optional<std::size_t> fault_slave(const fault::FaultSpec& spec) {
 
 void check_cut(const NetworkFile& file, std::span<const network::LinePart> parts) {
   if (parts.size() <= 1) return;
-  if (const std::optional<std::size_t> i = first_branch(file.topology))
-    throw NetworkFileError(fmt::format("{}:{}: slaves[{}]: the slaves form a tree (parent, port); --processes cuts a "
-                                       "line, so a tree is served in one process",
-                                       file.file, file.slaves[*i].line, *i));
+  if (const std::optional<std::size_t> i = first_branch(file.topology)) {
+    const network::Uplink& up = file.topology.uplinks[*i];
+    const std::string on = up.parent == network::Uplink::kMaster
+                               ? std::string("the master")
+                               : fmt::format("port {} of slave {} ({})", up.port, up.parent + 1,
+                                             file.slaves[static_cast<std::size_t>(up.parent)].name);
+    throw NetworkFileError(fmt::format("{}:{}: slave {} ({}) is cabled to {}: the slaves form a tree; --processes "
+                                       "cuts a line, so a tree is served in one process",
+                                       file.file, file.slaves[*i].line, *i + 1, file.slaves[*i].name, on));
+  }
   for (const network::SignalWire& w : file.wires) {
     const std::size_t from = part_holding(parts, w.from.slave), to = part_holding(parts, w.to.slave);
     if (from != to)
