@@ -4,7 +4,7 @@
 # serves slaves 1-2 itself and slave 3 in a second process, and a master sees the line as it sees
 # the same file in one process (`vdrive-master scan --json`), with DC delays
 # increasing along it and 3,000 clean cycles in Op. The fault armed on slave 3 acts in the part
-# that serves it: its 603Fh reads an alarm, slave 1's none. A file whose wire would join two parts
+# that serves it: its 603Fh reads an alarm, slave 1's none, and part 2 logs the alarm as slave 3's. A file whose wire would join two parts
 # is refused before serving, exit 2, naming the wire's line.
 #
 # Usage: bash split_network_file.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
@@ -55,6 +55,9 @@ echo "603Fh: slave 1 $a1, slave 3 $a3"
 [ "$a1" = 0 ] || fail "slave 1 reports alarm $a1: the fault acted on the wrong slave"
 grep -q "two.yaml:6: armed fault 1 (encoder_error slave 1)" "$WORK/vdrive.log" \
   || { cat "$WORK/vdrive.log"; fail "part 2 did not arm the fault on its first slave"; }
+# Part 2 logs its slave by its place in the whole line.
+grep -Eq "\[part 2\] \[info\] slave 3 (@0x1003 )?a6b: alarm 21.0" "$WORK/vdrive.log" \
+  || { cat "$WORK/vdrive.log"; fail "part 2 does not log slave 3's alarm as slave 3"; }
 
 restart_line --no-control --network "$WORK/one.yaml" --processes 2
 wait_for_line --json

@@ -28,7 +28,7 @@ std::string alarm_text(const profile::ProductProfile& p, std::uint16_t error_cod
 }  // namespace
 
 std::vector<std::string> line_changes(const runtime::StatusSample& before, const runtime::StatusSample& now,
-                                      const network::Network& network) {
+                                      const network::Network& network, std::size_t slaves_before) {
   std::vector<std::string> lines;
   const std::size_t n = std::min({before.slaves.size(), now.slaves.size(), network.size()});
   // A fault that follows a host stall says so: the user can tell the host from their master.
@@ -37,7 +37,7 @@ std::vector<std::string> line_changes(const runtime::StatusSample& before, const
     const runtime::SlaveStatus& b = before.slaves[i];
     const runtime::SlaveStatus& a = now.slaves[i];
     const profile::ProductProfile& p = network.profile(i);
-    const std::string who = ecat::slave_label(i, a.station, p.id);
+    const std::string who = ecat::slave_label(slaves_before + i, a.station, p.id);
     const bool was_error = (b.al_status & ecat::reg::kAlErrorFlag) != 0, is_error = (a.al_status & ecat::reg::kAlErrorFlag) != 0;
     if ((a.al_status & 0x0F) != (b.al_status & 0x0F))
       lines.push_back(fmt::format("{}: {} -> {}", who, runtime::al_state_name(b.al_status), runtime::al_state_name(a.al_status)));

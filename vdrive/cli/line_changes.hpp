@@ -10,6 +10,7 @@
 // An AL error or alarm seen within runtime::kStallAftermath of a host stall ends "after a host
 // stall of 12.3 ms". host_stall_lines() are the stalls themselves, logged at warning level.
 // A change that comes and goes between two samples is not seen.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,10 @@ namespace vdrive::network { class Network; }
 
 namespace vdrive::cli {
 
+// `slaves_before`: the slaves of the line before this process's (a later part of --processes), so
+// slaves are named by their place in the whole line.
 std::vector<std::string> line_changes(const runtime::StatusSample& before, const runtime::StatusSample& now,
-                                      const network::Network& network);
+                                      const network::Network& network, std::size_t slaves_before = 0);
 
 // Each stall recorded since number `seen` (updated), as runtime::describe() says it; stalls the
 // record ring no longer holds are counted in one line.

@@ -64,6 +64,7 @@ struct RunOptions {
   bool network_loaded = false;      // `network` and `drives` hold the network file or ENI already
   int ready_fd = -1;                // a part of --processes tells its parent here that it serves
   std::size_t later_slaves = 0;     // --processes, part 1: the slaves the other parts serve
+  std::size_t slaves_before = 0;    // --slaves-before: a later part of --processes, the slaves ahead of it
   std::vector<control::RemotePart> later_parts;  // --processes, part 1: their control sockets
   std::vector<std::string> drives;
   std::string network_file;         // --network: the slaves, topology, aliases and wires of a network file
@@ -363,6 +364,7 @@ void run_in_parts(RunOptions o) {
       for (std::size_t i = parts[k].first; i < parts[k].first + parts[k].count; ++i) a.push_back(o.drives[i]);
       for (const std::string& plant : plants_of_part(o.plants, parts, k, o.drives.size())) a.insert(a.end(), {"--plant", plant});
     }
+    a.insert(a.end(), {"--slaves-before", std::to_string(parts[k].first)});
     a.insert(a.end(), {"--hop-delay", std::to_string(o.hop_delay), "--cpu", std::to_string(cpu_of(k)), "--fault-seed",
                        std::to_string(o.fault_seed), "--no-status", "--log-level", level});
     // Its own control socket, which part 1's routes to (part_router.hpp); none if part 1 has none.
@@ -519,6 +521,7 @@ void run(RunOptions o) {
   runtime::LoopCounters counters;
   counters.stalls.set_floor(static_cast<Nanos>(o.stall_ms * 1e6));
   RunStatus status(o.status, *network, counters, &wire);  // the live status line (run_status.hpp)
+  status.set_slaves_before(o.slaves_before);
   const std::unique_ptr<telemetry::LineTelemetry> telemetry =
       start_run_telemetry(o.telemetry, *network, impaired, clock, counters, &faults, [&waker] { waker.wake(); });
   const std::unique_ptr<web::WebServer> page =
@@ -588,6 +591,7 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::Range(1L, 64L));
   cmd->add_option("--ready-fd", o->ready_fd, "")->group("");  // a part of --processes tells its parent it serves
   cmd->add_option("--line-part", o->line_part, "")->group("");  // a part of --processes over a network file or ENI
+  cmd->add_option("--slaves-before", o->slaves_before, "")->group("");  // a part of --processes: logs whole-line positions
   cmd->add_option("--next-iface", o->next_iface,
                   "The line goes on through interface NAME: out of the last slave's port 1 to whatever is cabled "
                   "there (another vdrive, real slaves) and back (docs/scale-out.md)");

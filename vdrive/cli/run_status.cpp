@@ -119,7 +119,7 @@ void RunStatus::print_loop() {
     // Stalls first: a fault they explain is logged after them.
     for (const std::string& stall : host_stall_lines(counters_.stalls, stalls_seen)) spdlog::warn("{}", stall);
     runtime::StatusSample now = runtime::take_sample(status_, counters_, steady_now());
-    for (const std::string& change : line_changes(*last_change, now, network_)) spdlog::info("{}", change);
+    for (const std::string& change : line_changes(*last_change, now, network_, slaves_before_)) spdlog::info("{}", change);
     last_change = now;
     if (!enabled_ || tick % ticks_per_line != 0) continue;
     const std::string line = runtime::format_status_line(now, before ? &*before : nullptr);

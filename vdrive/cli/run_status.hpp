@@ -44,6 +44,8 @@ public:
   runtime::LoopService* wrap(runtime::LoopService* next);
   // Stops the thread and ends the line (also done by the destructor).
   void stop();
+  // A later part of --processes: its slaves are logged by their place in the whole line.
+  void set_slaves_before(std::size_t n) { slaves_before_ = n; }
 
 private:
   void print_loop();
@@ -53,6 +55,7 @@ private:
   network::Network& network_;
   const runtime::LoopCounters& counters_;
   const fault::WireImpairment* wire_;
+  std::size_t slaves_before_ = 0;
   runtime::LineStatus status_;
   std::unique_ptr<runtime::LineStatusPublisher> publisher_;
   std::atomic<bool> stop_{false};
