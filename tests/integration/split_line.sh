@@ -28,16 +28,12 @@ require_tools python3
 DRIVES=(--drive a6b ds5c1 ds1000a)
 
 start_line "${DRIVES[@]}"
-wait_for_line --json
-cp "$WORK/scan.out" "$WORK/one.json"
-scan_identities "$WORK/one.json" >"$WORK/one.txt"
+scan_line one
 [ "$(wc -l <"$WORK/one.txt")" -eq 3 ] || { cat "$WORK/one.json"; fail "one process: not 3 slaves"; }
 
 CONTROL="$WORK/control.sock"
 restart_line --processes 2 --control "$CONTROL" "${DRIVES[@]}"
-wait_for_line --json
-cp "$WORK/scan.out" "$WORK/two.json"
-scan_identities "$WORK/two.json" >"$WORK/two.txt"
+scan_line two
 diff "$WORK/one.txt" "$WORK/two.txt" || fail "two processes: the line does not look as in one process"
 expect_delays_increase "$WORK/two.json" "in two processes (one process: $(scan_delays "$WORK/one.json"))"
 grep -q "part 2 (slave 3) serves" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "no child part logged"; }

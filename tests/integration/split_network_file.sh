@@ -33,15 +33,11 @@ printf "$LINE" >"$WORK/one.yaml"
 printf "${LINE}faults:\n  - {kind: encoder_error, slave: c, at: 300ms}\nprocesses: 2\n" >"$WORK/two.yaml"
 
 start_line --no-control --network "$WORK/one.yaml"
-wait_for_line --json
-cp "$WORK/scan.out" "$WORK/one.json"
-scan_identities "$WORK/one.json" >"$WORK/one.txt"
+scan_line one
 [ "$(wc -l <"$WORK/one.txt")" -eq 3 ] || { cat "$WORK/one.json"; fail "one process: not 3 slaves"; }
 
 restart_line --no-control --network "$WORK/two.yaml"
-wait_for_line --json
-cp "$WORK/scan.out" "$WORK/two.json"
-scan_identities "$WORK/two.json" >"$WORK/two.txt"
+scan_line two
 diff "$WORK/one.txt" "$WORK/two.txt" || fail "the file in two processes does not look as in one"
 expect_delays_increase "$WORK/two.json" "in two processes (one process: $(scan_delays "$WORK/one.json"))"
 grep -q "the line of 3 slaves in 2 processes" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "the file's processes: 2 was not used"; }
@@ -60,8 +56,7 @@ grep -Eq "\[part 2\] \[info\] slave 3 (@0x1003 )?a6b: alarm 21.0" "$WORK/vdrive.
   || { cat "$WORK/vdrive.log"; fail "part 2 does not log slave 3's alarm as slave 3"; }
 
 restart_line --no-control --network "$WORK/one.yaml" --processes 2
-wait_for_line --json
-scan_identities "$WORK/scan.out" >"$WORK/flag.txt"
+scan_line flag
 diff "$WORK/one.txt" "$WORK/flag.txt" || fail "--processes 2 with the file: the line does not look as in one process"
 expect_clean_op "op over a network file in two processes"
 echo "PASS"

@@ -35,8 +35,7 @@ slaves() { python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["
 
 # One process first: what the master should see.
 start_line --drive a6b ds5c1 ds1000a
-wait_for_line --json
-scan_identities "$WORK/scan.out" >"$WORK/one.txt"
+scan_line one
 kill "$VDRIVE_PID"; wait "$VDRIVE_PID" 2>/dev/null
 
 # The cable between the hosts.
@@ -49,8 +48,7 @@ ip netns exec "$NS_B" "$VDRIVE" run --iface "$B_IN" --drive ds1000a --no-control
 B_PID=$!
 ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --next-iface "$A_OUT" --drive a6b ds5c1 >"$WORK/vdrive.log" 2>&1 &
 VDRIVE_PID=$!
-wait_for_line --json
-scan_identities "$WORK/scan.out" >"$WORK/two.txt"
+scan_line two
 diff "$WORK/one.txt" "$WORK/two.txt" || fail "over two hosts the line does not look as in one process"
 expect_delays_increase "$WORK/scan.out" "over two hosts"
 grep -q "the line goes on through $A_OUT (port 1 of slave 2; link up)" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "host A did not say where the line goes on"; }

@@ -6,6 +6,8 @@
 #   scan_delays FILE          the slaves' DC delays, space-separated
 #   expect_delays_increase FILE WHAT
 #   expect_clean_op WHAT      Op with DC at 1 ms for 3,000 cycles, 0 wrong working counters
+#   scan_line NAME            waits for the line now serving and keeps its scan as $WORK/NAME.json
+#                             and its identities as $WORK/NAME.txt
 
 scan_identities() {
   python3 -c '
@@ -35,4 +37,10 @@ expect_clean_op() {
   [ $rc -eq 0 ] || fail "$1: vdrive-master op exited $rc"
   grep -Eq "^summary: 3000 cycles of 1000 us, working counter [0-9]+ expected, 0 wrong, 0 lost, 0 not all in Op" "$WORK/op.txt" \
     || fail "$1: not 3000 cycles with zero wrong working counters"
+}
+
+scan_line() {
+  wait_for_line --json
+  cp "$WORK/scan.out" "$WORK/$1.json"
+  scan_identities "$WORK/$1.json" >"$WORK/$1.txt"
 }
