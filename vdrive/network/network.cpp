@@ -212,16 +212,18 @@ void Network::set_control_step_batch(Nanos wait) {
 // Step by step across the drives, oldest step first: a frame that arrives meanwhile overtakes
 // after one drive's one step, as it does between steps on time, not after a drive's whole batch.
 void Network::catch_up(Nanos now, BetweenSlaves* between) {
+  bool ran = false;
   for (;;) {
     Nanos oldest = std::numeric_limits<Nanos>::max();
     for (const auto& slave : slaves_) oldest = std::min(oldest, slave->firmware->next_control_step());
-    if (oldest > now) return;
+    if (oldest > now) break;
     for (auto& slave : slaves_) {
       if (slave->firmware->next_control_step() > oldest) continue;
-      slave->firmware->step_once(now);
+      ran = slave->firmware->step_once(now) || ran;
       if (between != nullptr) between->run();
     }
   }
+  if (ran) copy_wires();  // a wire's source may be what a step changed (a drive's switch output)
 }
 
 Nanos Network::next_deadline() const {
