@@ -94,13 +94,6 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   }
   drive_module::DriveModule* drive_ = nullptr;
   mailbox::MailboxModule* mailbox_ = nullptr;
-  Nanos step_batch = 0;  // set_control_step_batch
-
-  void catch_up(Nanos now) {
-    if (drive_ == nullptr) return;
-    drive_->catch_up_now(now);
-    apply_fault(*drive_);
-  }
 
   std::uint32_t serviced_events() const {
     std::uint32_t events = kEsmEvents;
@@ -150,7 +143,6 @@ struct SlaveFirmware::Impl final : TransitionHooks {
   }
 
   void on_irq(Nanos now) {
-    if (step_batch > 0) catch_up(now);
     watch_sii();
     const std::uint32_t events = pdi.read_u32(reg::kAlEventRequest);
     for (auto& m : modules) {
@@ -279,7 +271,6 @@ void SlaveFirmware::tick(Nanos now) {
 Nanos SlaveFirmware::next_deadline() const { return impl_->next_deadline(); }
 
 void SlaveFirmware::set_control_step_batch(Nanos wait) {
-  impl_->step_batch = wait;
   if (impl_->drive_ != nullptr) impl_->drive_->set_step_batch(wait);
 }
 
@@ -293,11 +284,6 @@ bool SlaveFirmware::step_once(Nanos now) {
   const bool ran = impl_->drive_->step_once(now);
   impl_->apply_fault(*impl_->drive_);
   return ran;
-}
-
-void SlaveFirmware::catch_up(Nanos now) {
-  impl_->now_ = now;
-  impl_->catch_up(now);
 }
 
 void SlaveFirmware::set_device_id_switch(std::uint16_t id) { impl_->device_id_switch = id; }

@@ -47,12 +47,10 @@ public:
   Nanos next_deadline() const;
 
   // Batched control steps (real time): the drive's steps may wait up to `wait` for the next
-  // catch_up() instead of each being a deadline; every interrupt catches the drive up first, so the
-  // mailbox, the process data and the AL state machine see it as of that instant. 0, the default:
-  // each step is due at its own instant.
+  // step_once() instead of each being a deadline (Network::catch_up runs them, before every
+  // interrupt, so the mailbox, the process data and the AL state machine see the drive as of that
+  // instant). 0, the default: each step is due at its own instant.
   void set_control_step_batch(Nanos wait);
-  // Runs the drive's control steps due by `now` (nothing for a device without a drive).
-  void catch_up(Nanos now);
   // Runs the drive's next control step if it is due by `now`; true if one ran.
   bool step_once(Nanos now);
   // The instant of the drive's next control step, whether or not the loop must wake for it;

@@ -11,7 +11,7 @@
 // "ESM change" alarm (A6B Err88.2, DS5C1 E-882, DS1000A-EC FF80h).
 // Batched control steps (set_step_batch, real time only): the loop need not wake for each step;
 // a step waits up to that long and runs, with its own instant, in a batch at the next call that
-// catches the drive up (an interrupt, an exchange, a loop round: SlaveFirmware::catch_up).
+// catches the drive up (an interrupt, an exchange, a loop round: Network::catch_up, step_once).
 // Installed for products that list drive modes (6502h != 0).
 #include <memory>
 
@@ -38,10 +38,9 @@ public:
   // How long a due control step may wait for a catch-up before the loop must wake for it; 0 (the
   // default): not at all, each step is a deadline of its own.
   void set_step_batch(Nanos wait) { step_batch_ = wait; }
-  // Runs what tick() runs, whether or not it is due: the control steps due by `now` and the alarm
-  // for a new AL error, so an observer (the mailbox, a sample, a fault) sees the drive as of now.
-  void catch_up_now(Nanos now) { tick(now); }
-  // The same for one control step at most; true if one ran.
+  // What tick() runs, whether or not it is due, for one control step at most: the alarm for a new
+  // AL error and the next step if it is due by `now`; true if one ran. Network::catch_up interleaves
+  // the drives with it, so an observer (the mailbox, a sample, a fault) sees them as of now.
   bool step_once(Nanos now);
 
   // Process-data hooks (ProcessDataModule::set_application).
