@@ -50,7 +50,7 @@ TEST(NetworkFilePart, EachPartKeepsItsSlavesWiresSignalsAndFaultsNumberedFromIts
   const std::vector<network::LinePart> parts = network::split_line(4, 2);
   machine::check_cut(f, parts);
 
-  const machine::NetworkFile one = machine::line_part(f, parts, 0);
+  const machine::NetworkFile one = machine::line_part(f, parts[0]);
   ASSERT_EQ(one.slaves.size(), 2u);
   EXPECT_EQ(one.slaves[1].name, "b");
   ASSERT_EQ(one.wires.size(), 1u);
@@ -61,7 +61,7 @@ TEST(NetworkFilePart, EachPartKeepsItsSlavesWiresSignalsAndFaultsNumberedFromIts
   EXPECT_EQ(one.faults[0].spec.kind, fault::FaultKind::drop);
   EXPECT_EQ(one.faults[1].spec.slave, 2);
 
-  const machine::NetworkFile two = machine::line_part(f, parts, 1);
+  const machine::NetworkFile two = machine::line_part(f, parts[1]);
   ASSERT_EQ(two.slaves.size(), 2u);
   EXPECT_EQ(two.slaves[0].name, "c");
   EXPECT_EQ(two.slaves[0].alias, 7);

@@ -304,8 +304,7 @@ void cut_to_part(RunOptions& o) {
       first + count > o.network.slaves.size())
     throw CliError(kExitBadArguments, fmt::format("--line-part {}: expected FIRST:COUNT within the {} slaves of {}",
                                                   o.line_part, o.network.slaves.size(), o.network_file));
-  const std::vector<network::LinePart> parts{{0, first}, {first, count}, {first + count, o.network.slaves.size() - first - count}};
-  o.network = machine::line_part(o.network, parts, 1);
+  o.network = machine::line_part(o.network, {first, count});
   o.drives.clear();
   for (const machine::NetworkSlave& sl : o.network.slaves) o.drives.push_back(sl.device);
 }
@@ -342,6 +341,9 @@ void run_in_parts(RunOptions o) {
       throw CliError(kExitBadArguments, fmt::format("--processes {}: {}", o.processes, e.what()));
     }
   }
+  // Each later part's private control socket beside part 1's (part_router.hpp); none without control.
+  std::vector<std::string> sockets(o.no_control ? 0 : parts.size());
+  for (std::size_t k = 1; k < sockets.size(); ++k) sockets[k] = part_control_path(control_path(o), k + 1);
   const unsigned cpus = std::max(1U, std::thread::hardware_concurrency());
   const int base_cpu = o.cpu >= 0 ? o.cpu : 0;
   const auto cpu_of = [&](std::size_t k) { return static_cast<int>((static_cast<unsigned>(base_cpu) + k) % cpus); };
@@ -369,7 +371,7 @@ void run_in_parts(RunOptions o) {
                        std::to_string(o.fault_seed), "--no-status", "--log-level", level});
     // Its own control socket, which part 1's routes to (part_router.hpp); none if part 1 has none.
     if (o.no_control) a.push_back("--no-control");
-    else a.insert(a.end(), {"--control", part_control_path(control_path(o), k + 1)});
+    else a.insert(a.end(), {"--control", sockets[k]});
     if (!o.profile_dir.empty()) a.insert(a.end(), {"--profile-dir", o.profile_dir});
     if (o.foe_strict) a.push_back("--foe-strict");
     if (o.rt_priority != 0) a.insert(a.end(), {"--rt-priority", std::to_string(o.rt_priority)});
@@ -384,25 +386,20 @@ void run_in_parts(RunOptions o) {
   // A part killed before it could remove its control socket leaves the file behind; once every
   // part has ended (this outlives `others`), what nobody listens on is removed.
   struct PartSockets {
-    std::vector<std::string> paths;
+    const std::vector<std::string>& paths;
     ~PartSockets() {
-      for (const std::string& p : paths) control::remove_if_stale(p);
+      for (std::size_t k = 1; k < paths.size(); ++k) control::remove_if_stale(paths[k]);
     }
-  } part_sockets;
-  for (std::size_t k = 1; k < parts.size() && !o.no_control; ++k)
-    part_sockets.paths.push_back(part_control_path(control_path(o), k + 1));
+  } part_sockets{sockets};
   PartProcesses others(parts, fmt::format("vd{}p", ::getpid() % 100000), o.netns, child_args);
   RunOptions first = o;
   first.processes = 1;
   first.drives.assign(o.drives.begin(), o.drives.begin() + static_cast<long>(parts[0].count));
   first.plants = plants_of_part(o.plants, parts, 0, o.drives.size());
-  if (from_file) first.network = machine::line_part(o.network, parts, 0);
+  if (from_file) first.network = machine::line_part(o.network, parts[0]);
   first.next_iface = others.first_onward();
   first.later_slaves = o.drives.size() - parts[0].count;
-  if (!o.no_control) {
-    for (std::size_t k = 1; k < parts.size(); ++k)
-      first.later_parts.push_back({parts[k].first, parts[k].count, part_control_path(control_path(o), k + 1)});
-  }
+  for (std::size_t k = 1; k < sockets.size(); ++k) first.later_parts.push_back({parts[k].first, parts[k].count, sockets[k]});
   first.cpu = cpu_of(0);
   spdlog::info("the line of {} slaves in {} processes: part 1 (slaves 1-{}) here on CPU {}", o.drives.size(),
                parts.size(), parts[0].count, first.cpu);

@@ -100,7 +100,7 @@ ControlReply PartRouter::route(const ControlRequest& r, std::string_view line) {
 
 ControlReply PartRouter::inject(const ControlRequest& r, std::string_view line) {
   const fault::FaultSpec& s = r.fault;
-  const bool at_a_slave = fault::info(s.kind).layer != fault::Layer::wire || s.kind == fault::FaultKind::link_down;
+  const bool at_a_slave = fault::acts_at_slave(s.kind);
   if (at_a_slave && s.slave == 0 && s.station != 0) return inject_at_station(r, line);
   std::size_t part = 0;
   if (at_a_slave && s.slave > 0) {

@@ -18,7 +18,7 @@ std::vector<FaultFieldInfo> fault_fields(FaultKind kind) {
   using K = FaultKind;
   const FaultKindInfo& i = info(kind);
   std::vector<FaultFieldInfo> f;
-  if (i.layer != Layer::wire || kind == K::link_down)
+  if (acts_at_slave(kind))
     f.push_back({"slave", "integer", true, "", "", kind == K::link_down ? "the slave whose port's cable breaks (1 = first, or its station address 0x1001)"
                                                              : "the slave it acts on (1 = first, or its station address 0x1001)"});
   if (kind == K::link_down) f.push_back({"port", "integer", false, "0", "", "0: the cable into the slave; 1-3: to the slaves behind it"});
@@ -61,7 +61,7 @@ FaultSpec read_fault(FaultFieldSource& src, int max_slave) {
   FaultSpec f;
   f.kind = *k;
   const FaultKindInfo& i = info(f.kind);
-  if (i.layer != Layer::wire || f.kind == K::link_down) {
+  if (acts_at_slave(f.kind)) {
     if (!src.has("slave")) src.missing("slave", fmt::format("kind \"{}\" acts on one slave (1 = first)", kind));
     if (const std::optional<std::string> written = src.address_text("slave")) {
       ecat::SlaveRef ref;

@@ -56,6 +56,8 @@ std::span<const FaultKindInfo> fault_catalogue() { return kCatalogue; }
 
 const FaultKindInfo& info(FaultKind kind) { return kCatalogue[static_cast<std::size_t>(kind)]; }
 
+bool acts_at_slave(FaultKind kind) { return info(kind).layer != Layer::wire || kind == FaultKind::link_down; }
+
 std::optional<FaultKind> fault_kind_from_name(std::string_view name) {
   for (const FaultKindInfo& i : kCatalogue)
     if (i.name == name) return i.kind;

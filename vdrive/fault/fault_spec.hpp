@@ -37,6 +37,9 @@ struct FaultKindInfo {
 
 std::span<const FaultKindInfo> fault_catalogue();
 const FaultKindInfo& info(FaultKind kind);
+// Whether the kind acts at one slave (FaultSpec::slave or station): every layer but the wire's,
+// and link_down (the cable at a slave's port); the other wire faults act on the master's cable.
+bool acts_at_slave(FaultKind kind);
 std::optional<FaultKind> fault_kind_from_name(std::string_view name);
 std::string_view name(Layer layer);
 

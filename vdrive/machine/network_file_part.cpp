@@ -8,12 +8,6 @@
 namespace vdrive::machine {
 namespace {
 
-std::size_t part_holding(std::span<const network::LinePart> parts, std::size_t slave) {
-  for (std::size_t k = 0; k < parts.size(); ++k)
-    if (slave >= parts[k].first && slave < parts[k].first + parts[k].count) return k;
-  return parts.size();
-}
-
 std::string describe_part(std::span<const network::LinePart> parts, std::size_t k) {
   const network::LinePart& p = parts[k];
   return p.count == 1 ? fmt::format("part {}, slave {}", k + 1, p.first + 1)
@@ -28,12 +22,6 @@ std::optional<std::size_t> first_branch(const network::Topology& t) {
     if (i == 0 ? up.parent != network::Uplink::kMaster : (up.parent != static_cast<int>(i - 1) || up.port != 1)) return i;
   }
   return std::nullopt;
-}
-
-// The slave a fault acts on (0-based), or none for the faults of the master's wire.
-std::optional<std::size_t> fault_slave(const fault::FaultSpec& spec) {
-  if (fault::info(spec.kind).layer == fault::Layer::wire && spec.kind != fault::FaultKind::link_down) return std::nullopt;
-  return static_cast<std::size_t>(spec.slave - 1);
 }
 
 }  // namespace
@@ -51,7 +39,7 @@ void check_cut(const NetworkFile& file, std::span<const network::LinePart> parts
                                        file.file, file.slaves[*i].line, *i + 1, file.slaves[*i].name, on));
   }
   for (const network::SignalWire& w : file.wires) {
-    const std::size_t from = part_holding(parts, w.from.slave), to = part_holding(parts, w.to.slave);
+    const std::size_t from = network::part_of(parts, w.from.slave), to = network::part_of(parts, w.to.slave);
     if (from != to)
       throw NetworkFileError(fmt::format("{}: joins slave {} ({}) and slave {} ({}); a wire is copied inside one "
                                          "process, so --processes must keep both ends in one part",
@@ -66,8 +54,7 @@ void check_cut(const NetworkFile& file, std::span<const network::LinePart> parts
   }
 }
 
-NetworkFile line_part(const NetworkFile& file, std::span<const network::LinePart> parts, std::size_t part) {
-  const network::LinePart& p = parts[part];
+NetworkFile line_part(const NetworkFile& file, network::LinePart p) {
   const auto inside = [&](std::size_t slave) { return slave >= p.first && slave < p.first + p.count; };
   NetworkFile out;
   out.file = file.file;
@@ -85,9 +72,10 @@ NetworkFile line_part(const NetworkFile& file, std::span<const network::LinePart
     out.signals.push_back(std::move(s));
   }
   for (ArmedFault a : file.faults) {
-    const std::optional<std::size_t> slave = fault_slave(a.spec);
-    if (slave ? !inside(*slave) : part != 0) continue;
-    if (slave) a.spec.slave -= static_cast<int>(p.first);
+    const bool at_slave = fault::acts_at_slave(a.spec.kind);
+    // The master's wire reaches the part whose first slave is the line's first.
+    if (at_slave ? !inside(static_cast<std::size_t>(a.spec.slave - 1)) : p.first != 0) continue;
+    if (at_slave) a.spec.slave -= static_cast<int>(p.first);
     out.faults.push_back(std::move(a));
   }
   return out;

@@ -17,7 +17,8 @@ namespace vdrive::machine {
 // Throws NetworkFileError naming the first thing in `file` that cannot be cut as `parts` says.
 void check_cut(const NetworkFile& file, std::span<const network::LinePart> parts);
 
-// Part `part` of `parts`, which check_cut accepted.
-NetworkFile line_part(const NetworkFile& file, std::span<const network::LinePart> parts, std::size_t part);
+// The part of the file's line that `part` names (a part check_cut accepted): its slaves numbered
+// from its first; the master's wire faults go to the part that starts the line.
+NetworkFile line_part(const NetworkFile& file, network::LinePart part);
 
 }  // namespace vdrive::machine

@@ -18,7 +18,7 @@ std::vector<LinePart> split_line(std::size_t slaves, std::size_t parts) {
   return out;
 }
 
-std::size_t part_of(const std::vector<LinePart>& parts, std::size_t slave) {
+std::size_t part_of(std::span<const LinePart> parts, std::size_t slave) {
   for (std::size_t k = 0; k < parts.size(); ++k)
     if (slave >= parts[k].first && slave < parts[k].first + parts[k].count) return k;
   return parts.size();

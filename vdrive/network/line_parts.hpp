@@ -4,6 +4,7 @@
 // take one slave more when the slaves do not divide evenly, so no part is more than one slave
 // larger than another.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace vdrive::network {
@@ -17,6 +18,6 @@ struct LinePart {
 std::vector<LinePart> split_line(std::size_t slaves, std::size_t parts);
 
 // The part holding slave `slave` (0-based), or parts.size() if none does.
-std::size_t part_of(const std::vector<LinePart>& parts, std::size_t slave);
+std::size_t part_of(std::span<const LinePart> parts, std::size_t slave);
 
 }  // namespace vdrive::network
