@@ -513,7 +513,9 @@ void run(RunOptions o) {
   if (control) spdlog::info("fault control on {}", control->path());
   for (std::size_t k = 0; control && k < o.later_parts.size(); ++k) {
     const control::RemotePart& p = o.later_parts[k];
-    spdlog::info("faults for slaves {}-{} go on to part {}'s control socket {}", p.first + 1, p.first + p.count, k + 2, p.socket);
+    spdlog::info("faults for part {} ({}) go on to its control socket {}", k + 2,
+                 p.count == 1 ? fmt::format("slave {}", p.first + 1) : fmt::format("slaves {}-{}", p.first + 1, p.first + p.count),
+                 p.socket);
   }
   runtime::LoopCounters counters;
   counters.stalls.set_floor(static_cast<Nanos>(o.stall_ms * 1e6));
