@@ -5,7 +5,8 @@
 # commands a 0.5 Hz sine of a quarter of a motor revolution for 4 s. Every drive must report "ok":
 # enabled, no fault, and its following error within its window 6065h the whole time. (At a whole
 # revolution a few-ms stall of a virtual machine took the A6B out of its window now and then:
-# docs/master.md, `vdrive demo`.)
+# docs/master.md, `vdrive demo`.) A run in which every alarm followed a host stall failed for the
+# host, not for vdrive: the sine runs once more and must pass then.
 #
 # Usage: bash cia402_sine.sh <path-to-vdrive> <build-dir>. Needs root; exit 77 = skipped.
 set -u
@@ -18,20 +19,35 @@ MASTER="$BUILD/master/vdrive-master"
 . "$(dirname "$0")/lib/veth_line.sh"
 require_tools
 
-start_line --rt-priority 80 --drive a6b --drive ds5c1 --drive ds1000a
-wait_for_line
-
-# --reply-timeout-us: see op_three_slaves.sh (late veth delivery on a loaded host).
-"$MASTER" op --rt-priority 70 --iface "$M_IF" --dc --cycle-us 1000 --reply-timeout-us 200000 \
-  --sine --revolutions 0.25 --frequency 0.5 --seconds 4 >"$WORK/op.txt" 2>"$WORK/op.err"
-rc=$?
-cat "$WORK/op.txt" "$WORK/op.err"
-# vdrive's own account of the host (docs/reliability.md "Host stalls"): each stall it saw, and the
-# count in its summary at exit; a failure says whether the host stalled.
-kill -TERM "$VDRIVE_PID"; wait "$VDRIVE_PID"; VDRIVE_PID=""
-stalls=$(grep -E "host stall" "$WORK/vdrive.log")
-echo "vdrive: ${stalls:-no host stall line}"
-echo "$stalls" | grep -qE "host stalls: (none|[0-9]+, longest)" || fail "vdrive's summary does not count host stalls"
+# One run: the line, the master's sine, and vdrive's account of the host (docs/reliability.md
+# "Host stalls": each stall it saw, each alarm that followed one, and the count at exit).
+run_sine() {
+  start_line --rt-priority 80 --drive a6b --drive ds5c1 --drive ds1000a
+  wait_for_line
+  # --reply-timeout-us: see op_three_slaves.sh (late veth delivery on a loaded host).
+  "$MASTER" op --rt-priority 70 --iface "$M_IF" --dc --cycle-us 1000 --reply-timeout-us 200000 \
+    --sine --revolutions 0.25 --frequency 0.5 --seconds 4 >"$WORK/op.txt" 2>"$WORK/op.err"
+  rc=$?
+  cat "$WORK/op.txt" "$WORK/op.err"
+  kill -TERM "$VDRIVE_PID"; wait "$VDRIVE_PID"; VDRIVE_PID=""
+  ip link del "$M_IF" 2>/dev/null; ip netns del "$NS" 2>/dev/null
+  stalls=$(grep -E "host stall" "$WORK/vdrive.log")
+  echo "vdrive: ${stalls:-no host stall line}"
+  echo "$stalls" | grep -qE "host stalls: (none|[0-9]+, longest)" || fail "vdrive's summary does not count host stalls"
+}
+# Whether the run failed for the host: the master ran, and every alarm vdrive raised came right
+# after a host stall (its log ends each such line "after a host stall of N ms"), as
+# scenario_realtime.sh decides for the scenario library.
+only_host_stalls() {
+  local alarms
+  alarms=$(grep -E "\] slave [0-9]+ @0x[0-9A-F]{4} [^:]*: alarm " "$WORK/vdrive.log")
+  [ -n "$alarms" ] && ! echo "$alarms" | grep -qv "after a host stall of "
+}
+run_sine
+if [ $rc -ne 0 ] && only_host_stalls; then
+  echo "every alarm followed a host stall: the sine runs once more"
+  run_sine
+fi
 [ $rc -eq 0 ] || fail "vdrive-master op --sine exited $rc ($(echo "$stalls" | tail -1))"
 ok=$(grep -Ec "^slave [0-9]+ @0x[0-9A-F]{4} [^:]*: ok, " "$WORK/op.txt")
 [ "$ok" -eq 3 ] || fail "$ok of 3 drives followed the sine ($(echo "$stalls" | tail -1))"
