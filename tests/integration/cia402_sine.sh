@@ -35,16 +35,8 @@ run_sine() {
   echo "vdrive: ${stalls:-no host stall line}"
   echo "$stalls" | grep -qE "host stalls: (none|[0-9]+, longest)" || fail "vdrive's summary does not count host stalls"
 }
-# Whether the run failed for the host: the master ran, and every alarm vdrive raised came right
-# after a host stall (its log ends each such line "after a host stall of N ms"), as
-# scenario_realtime.sh decides for the scenario library.
-only_host_stalls() {
-  local alarms
-  alarms=$(grep -E "\] slave [0-9]+ @0x[0-9A-F]{4} [^:]*: alarm " "$WORK/vdrive.log")
-  [ -n "$alarms" ] && ! echo "$alarms" | grep -qv "after a host stall of "
-}
 run_sine
-if [ $rc -ne 0 ] && only_host_stalls; then
+if [ $rc -ne 0 ] && alarms_followed_host_stalls; then
   echo "every alarm followed a host stall: the sine runs once more"
   run_sine
 fi

@@ -42,17 +42,25 @@ op_clean "--no-rx-ring --slice-us 200"
 
 # Batched control steps: the steps wait for the bus's events (SYNC0, frames) and run there. The
 # drives must follow the master's sine as they do with each step on time.
-kill "$VDRIVE_PID" && wait "$VDRIVE_PID" 2>/dev/null
-ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --rt-priority 80 --batch-steps-us 2000 --drive a6b \
-  --drive ds5c1 --drive ds1000a >"$WORK/vdrive.log" 2>&1 &
-VDRIVE_PID=$!
-wait_for_line
-grep -q "control steps batched within 2000 us" "$WORK/vdrive.log" || fail "--batch-steps-us 2000: the log does not say so"
-op_clean "--batch-steps-us 2000"
-"$MASTER" op --rt-priority 70 --iface "$M_IF" --dc --cycle-us 1000 --reply-timeout-us 200000 \
-  --sine --revolutions 0.25 --frequency 0.5 --seconds 4 >"$WORK/sine.txt" 2>"$WORK/sine.err"
-rc=$?
-cat "$WORK/sine.txt" "$WORK/sine.err"
+batched_sine() {
+  kill "$VDRIVE_PID" && wait "$VDRIVE_PID" 2>/dev/null
+  ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --no-control --rt-priority 80 --batch-steps-us 2000 --drive a6b \
+    --drive ds5c1 --drive ds1000a >"$WORK/vdrive.log" 2>&1 &
+  VDRIVE_PID=$!
+  wait_for_line
+  grep -q "control steps batched within 2000 us" "$WORK/vdrive.log" || fail "--batch-steps-us 2000: the log does not say so"
+  op_clean "--batch-steps-us 2000"
+  "$MASTER" op --rt-priority 70 --iface "$M_IF" --dc --cycle-us 1000 --reply-timeout-us 200000 \
+    --sine --revolutions 0.25 --frequency 0.5 --seconds 4 >"$WORK/sine.txt" 2>"$WORK/sine.err"
+  rc=$?
+  cat "$WORK/sine.txt" "$WORK/sine.err"
+}
+batched_sine
+# As in cia402_sine.sh: a sine that failed only for the host runs once more.
+if [ $rc -ne 0 ] && alarms_followed_host_stalls; then
+  echo "every alarm followed a host stall: the sine runs once more"
+  batched_sine
+fi
 [ $rc -eq 0 ] || fail "--batch-steps-us 2000: vdrive-master op --sine exited $rc"
 ok=$(grep -Ec "^slave [0-9]+ @0x[0-9A-F]{4} [^:]*: ok, " "$WORK/sine.txt")
 [ "$ok" -eq 3 ] || fail "--batch-steps-us 2000: $ok of 3 drives followed the sine"

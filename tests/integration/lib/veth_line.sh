@@ -10,6 +10,9 @@
 #   wait_for_line [ARGS...]   retry `vdrive-master scan --iface M_IF ARGS...` until it answers
 #                             (its output: $WORK/scan.out, errors: $WORK/scan.err)
 #   stop_capture
+#   alarms_followed_host_stalls   whether vdrive raised alarms and every one came right after a
+#                             host stall (its log ends such lines "after a host stall of N ms"):
+#                             a run that failed so failed for the host, not for vdrive
 # Names: NS, M_IF (master end), S_IF (drives' end), WORK (temporary directory).
 
 skip() { echo "SKIP: $*"; exit 77; }
@@ -84,4 +87,10 @@ wait_for_line() {
   done
   cat "$WORK/scan.err" "$WORK/vdrive.log"
   fail "no line answers on $M_IF (vdrive-master scan $*)"
+}
+
+alarms_followed_host_stalls() {
+  local alarms
+  alarms=$(grep -E "\] slave [0-9]+ @0x[0-9A-F]{4} [^:]*: alarm " "$WORK/vdrive.log")
+  [ -n "$alarms" ] && ! echo "$alarms" | grep -qv "after a host stall of "
 }
