@@ -14,11 +14,14 @@ public:
   virtual Nanos now() const = 0;
 };
 
-// CLOCK_MONOTONIC, epoch = creation of the clock object.
+// CLOCK_MONOTONIC, epoch = creation of the clock object, or an epoch given as a CLOCK_MONOTONIC
+// reading (processes of one run on one host share their times so).
 class MonotonicClock final : public Clock {
 public:
   MonotonicClock();
+  explicit MonotonicClock(Nanos origin) : origin_(origin) {}
   Nanos now() const override;
+  Nanos origin() const { return origin_; }
 
 private:
   Nanos origin_;

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
@@ -65,6 +66,9 @@ struct RunOptions {
   int ready_fd = -1;                // a part of --processes tells its parent here that it serves
   std::size_t later_slaves = 0;     // --processes, part 1: the slaves the other parts serve
   std::size_t slaves_before = 0;    // --slaves-before: a later part of --processes, the slaves ahead of it
+  std::size_t run_part = 1;         // --run-part K, --run-parts N: which part of --processes this is
+  std::size_t run_parts = 1;
+  Nanos clock_origin = 0;           // --clock-origin: a part of --processes times from part 1's epoch (0: its own)
   std::vector<control::RemotePart> later_parts;  // --processes, part 1: their control sockets
   std::vector<std::string> drives;
   std::string network_file;         // --network: the slaves, topology, aliases and wires of a network file
@@ -117,17 +121,27 @@ std::string part_control_path(const std::string& path, std::size_t part) {
   return fmt::format("{}.part{}{}", sock ? path.substr(0, path.size() - kSuffix.size()) : path, part, sock ? kSuffix : "");
 }
 
-std::unique_ptr<control::ControlServer> open_control(const RunOptions& o, control::FaultService& service) {
+// Part 1 of --processes: the router in front of every part's faults (part_router.hpp), for the
+// control socket and the telemetry's requests alike; null for a process that is the whole line.
+std::shared_ptr<control::PartRouter> part_router(const RunOptions& o, control::FaultService& service) {
+  if (o.later_parts.empty()) return nullptr;
+  // FaultService::call takes one caller at a time; the socket's and the telemetry's threads take turns.
+  auto one_at_a_time = std::make_shared<std::mutex>();
+  return std::make_shared<control::PartRouter>(
+      o.drives.size(), o.later_parts,
+      [&service, one_at_a_time](const control::ControlRequest& r) {
+        const std::lock_guard<std::mutex> turn(*one_at_a_time);
+        return service.call(r, 2'000'000'000);
+      },
+      [](const std::string& to, std::string_view line, Nanos timeout) { return control::control_call(to, line, timeout); });
+}
+
+std::unique_ptr<control::ControlServer> open_control(const RunOptions& o, control::FaultService& service,
+                                                     const std::shared_ptr<control::PartRouter>& router) {
   const std::string path = control_path(o);
   control::ControlServer::Handler handler = [&service](std::string_view line) { return answer(service, line); };
-  if (!o.later_parts.empty()) {
-    // Requests for the other parts' slaves go on to their sockets, on the socket's thread.
-    auto router = std::make_shared<control::PartRouter>(
-        o.drives.size(), o.later_parts,
-        [&service](const control::ControlRequest& r) { return service.call(r, 2'000'000'000); },
-        [](const std::string& to, std::string_view line, Nanos timeout) { return control::control_call(to, line, timeout); });
-    handler = [router](std::string_view line) { return router->answer(line); };
-  }
+  // Requests for the other parts' slaves go on to their sockets, on the socket's thread.
+  if (router) handler = [router](std::string_view line) { return router->answer(line); };
   try {
     return std::make_unique<control::ControlServer>(
         path, std::move(handler),
@@ -348,6 +362,8 @@ void run_in_parts(RunOptions o) {
   const int base_cpu = o.cpu >= 0 ? o.cpu : 0;
   const auto cpu_of = [&](std::size_t k) { return static_cast<int>((static_cast<unsigned>(base_cpu) + k) % cpus); };
   const std::string level(spdlog::level::to_string_view(spdlog::get_level()).data());
+  // One time base for the run: the parts' telemetry and logs put their events on one axis.
+  const Nanos origin = MonotonicClock().origin();
   const auto child_args = [&](std::size_t k, const std::string& in, const std::string& next) {
     std::vector<std::string> a{"run", "--iface", in};
     const std::string onward = k + 1 < parts.size() ? next : o.next_iface;
@@ -366,7 +382,12 @@ void run_in_parts(RunOptions o) {
       for (std::size_t i = parts[k].first; i < parts[k].first + parts[k].count; ++i) a.push_back(o.drives[i]);
       for (const std::string& plant : plants_of_part(o.plants, parts, k, o.drives.size())) a.insert(a.end(), {"--plant", plant});
     }
-    a.insert(a.end(), {"--slaves-before", std::to_string(parts[k].first)});
+    a.insert(a.end(), {"--clock-origin", std::to_string(origin), "--slaves-before", std::to_string(parts[k].first), "--run-part", std::to_string(k + 1), "--run-parts",
+                       std::to_string(parts.size())});
+    // Each part publishes its own slaves' telemetry in the run's domain; part 1 takes the requests.
+    if (o.telemetry.enabled)
+      a.insert(a.end(), {"--telemetry", "--telemetry-rate", fmt::format("{}", o.telemetry.rate_hz), "--domain",
+                         std::to_string(telemetry_domain(o.telemetry.domain))});
     a.insert(a.end(), {"--hop-delay", std::to_string(o.hop_delay), "--cpu", std::to_string(cpu_of(k)), "--fault-seed",
                        std::to_string(o.fault_seed), "--no-status", "--log-level", level});
     // Its own control socket, which part 1's routes to (part_router.hpp); none if part 1 has none.
@@ -401,6 +422,8 @@ void run_in_parts(RunOptions o) {
   first.later_slaves = o.drives.size() - parts[0].count;
   for (std::size_t k = 1; k < sockets.size(); ++k) first.later_parts.push_back({parts[k].first, parts[k].count, sockets[k]});
   first.cpu = cpu_of(0);
+  first.run_parts = parts.size();
+  first.clock_origin = origin;
   spdlog::info("the line of {} slaves in {} processes: part 1 (slaves 1-{}) here on CPU {}", o.drives.size(),
                parts.size(), parts[0].count, first.cpu);
   run(first);
@@ -459,7 +482,7 @@ void run(RunOptions o) {
   }
   const std::string where = (o.tap.empty() ? o.iface : "TAP " + o.tap) + (o.netns.empty() ? "" : " in namespace " + o.netns);
 
-  MonotonicClock clock;
+  const MonotonicClock clock = o.clock_origin != 0 ? MonotonicClock(o.clock_origin) : MonotonicClock();
   std::unique_ptr<network::Network> network;
   try {
     network::NetworkOptions options{o.hop_delay, o.profile_dir};
@@ -499,7 +522,8 @@ void run(RunOptions o) {
   const runtime::LoopWaker waker;  // this thread serves: requests cut its wait short
   faults.set_wake([&waker] { waker.wake(); });
   faults.set_later_slaves(o.later_slaves);
-  const std::unique_ptr<control::ControlServer> control = o.no_control ? nullptr : open_control(o, faults);
+  const std::shared_ptr<control::PartRouter> router = o.no_control ? nullptr : part_router(o, faults);
+  const std::unique_ptr<control::ControlServer> control = o.no_control ? nullptr : open_control(o, faults, router);
   for (const machine::ArmedFault& a : o.network.faults) faults.arm(a.spec, clock.now() + a.at, a.origin);
 
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
@@ -521,6 +545,12 @@ void run(RunOptions o) {
   counters.stalls.set_floor(static_cast<Nanos>(o.stall_ms * 1e6));
   RunStatus status(o.status, *network, counters, &wire);  // the live status line (run_status.hpp)
   status.set_slaves_before(o.slaves_before);
+  // In a line over processes each part publishes its slaves under whole-line positions; part 1
+  // takes the requests and routes their faults as its control socket does.
+  o.telemetry.place = {o.slaves_before, o.run_part - 1, o.run_parts, o.later_slaves};
+  o.telemetry.requests.take_requests = o.run_part == 1;
+  if (router)
+    o.telemetry.requests.route = [router](const control::ControlRequest& r, std::string_view line) { return router->route(r, line); };
   const std::unique_ptr<telemetry::LineTelemetry> telemetry =
       start_run_telemetry(o.telemetry, *network, impaired, clock, counters, &faults, [&waker] { waker.wake(); });
   const std::unique_ptr<web::WebServer> page =
@@ -591,6 +621,9 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--ready-fd", o->ready_fd, "")->group("");  // a part of --processes tells its parent it serves
   cmd->add_option("--line-part", o->line_part, "")->group("");  // a part of --processes over a network file or ENI
   cmd->add_option("--slaves-before", o->slaves_before, "")->group("");  // a part of --processes: logs whole-line positions
+  cmd->add_option("--run-part", o->run_part, "")->group("")->check(CLI::Range(1, 64));    // a part of --processes: its
+  cmd->add_option("--run-parts", o->run_parts, "")->group("")->check(CLI::Range(1, 64));  // telemetry's fault ids
+  cmd->add_option("--clock-origin", o->clock_origin, "")->group("");  // a part of --processes: one time base for telemetry
   cmd->add_option("--next-iface", o->next_iface,
                   "The line goes on through interface NAME: out of the last slave's port 1 to whatever is cabled "
                   "there (another vdrive, real slaves) and back (docs/scale-out.md)");

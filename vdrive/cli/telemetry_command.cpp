@@ -327,8 +327,11 @@ std::unique_ptr<telemetry::LineTelemetry> start_run_telemetry(const RunTelemetry
   const int domain = telemetry_domain(o.domain);
   try {
     auto t = std::make_unique<telemetry::LineTelemetry>(network, served, clock, counters, faults,
-                                                        telemetry::LineTelemetryOptions{o.rate_hz, domain}, std::move(wake));
-    spdlog::info("telemetry: DDS domain {}, {:g} Hz, topics rt/vdrive/{{axis_state,bus_state,events,control_request,control_reply}}", domain, o.rate_hz);
+                                                        telemetry::LineTelemetryOptions{o.rate_hz, domain, o.place, o.requests}, std::move(wake));
+    if (o.requests.take_requests)
+      spdlog::info("telemetry: DDS domain {}, {:g} Hz, topics rt/vdrive/{{axis_state,bus_state,events,control_request,control_reply}}", domain, o.rate_hz);
+    else
+      spdlog::info("telemetry: DDS domain {}, {:g} Hz, topics rt/vdrive/{{axis_state,bus_state,events}} (part 1 takes the requests)", domain, o.rate_hz);
     return t;
   } catch (const telemetry::DdsError& e) {
     throw CliError(kExitFailure, fmt::format("--telemetry: {}", e.what()));

@@ -20,6 +20,9 @@ struct RunTelemetryOptions {
   bool enabled = false;
   double rate_hz = 100.0;
   std::optional<int> domain;
+  // Not options: what `run --processes` sets for each part (telemetry::LineTelemetryOptions).
+  telemetry::LinePlace place;
+  telemetry::PublisherOptions requests;
 };
 
 // One axis sample as the live view shows it ("t=1.230s slave 1 Op sw=0x1237 ... pos=... ...").

@@ -17,7 +17,8 @@ struct LineTelemetry::Impl {
         services(faults, &sampler) {
     if (faults != nullptr)
       sampler.set_fault_handler([faults](const control::ControlRequest& r, Nanos now) { return faults->handle(r, now); });
-    publisher = std::make_unique<TelemetryPublisher>(sampler, o.domain, std::move(wake));
+    sampler.set_place(o.place);
+    publisher = std::make_unique<TelemetryPublisher>(sampler, o.domain, std::move(wake), o.requests);
   }
   TurnaroundStats turnaround;
   TimedLink timed;

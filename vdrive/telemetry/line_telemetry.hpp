@@ -9,6 +9,7 @@
 #include "common/clock.hpp"
 #include "vdrive/link/link.hpp"
 #include "vdrive/runtime/loop_service.hpp"
+#include "vdrive/telemetry/telemetry_publisher.hpp"
 
 namespace vdrive::network { class Network; }
 namespace vdrive::runtime { struct LoopCounters; }
@@ -19,6 +20,8 @@ namespace vdrive::telemetry {
 struct LineTelemetryOptions {
   double rate_hz = 100.0;
   int domain = 0;
+  LinePlace place;            // a part of `vdrive run --processes N` (Sampler::set_place)
+  PublisherOptions requests;  // who takes the control topic's requests (TelemetryPublisher)
 };
 
 class LineTelemetry {

@@ -11,6 +11,7 @@
 
 #include "ethercat/registers.hpp"
 #include "plant/plant.hpp"
+#include "vdrive/control/run_fault_id.hpp"
 #include "vdrive/fault/fault_injector.hpp"
 #include "vdrive/network/network.hpp"
 #include "vdrive/network/slave_lookup.hpp"
@@ -114,7 +115,7 @@ void Sampler::sample(Nanos now) {
   const RecentStall stall(sources_.counters, now);
   for (std::size_t i = 0; i < network_.size(); ++i) {
     esc::Esc& e = network_.esc(i);
-    const auto slave = static_cast<std::uint16_t>(i + 1);
+    const std::uint16_t slave = line_slave(i);
     const std::uint16_t al = e.peek_u16(kAlStatus), code = e.peek_u16(kAlStatusCode);
     const std::uint16_t station = e.peek_u16(ecat::reg::kStationAddress);
     if (al != last_al_[i]) {
@@ -219,25 +220,28 @@ void Sampler::sample_signals(Nanos now) {
     if (v == last_signals_[i]) continue;
     char text[96];
     *fmt::format_to_n(text, sizeof text - 1, "{} {} -> {}", signal_labels_[i], last_signals_[i], v).out = '\0';
-    event(now, static_cast<std::uint16_t>(network_.signals()[i].point.slave + 1), EventKind::signal,
+    event(now, line_slave(network_.signals()[i].point.slave), EventKind::signal,
           static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(last_signals_[i]), text);
     last_signals_[i] = v;
   }
 }
+
+int Sampler::run_id(int id) const { return control::run_fault_id(place_.part, id, place_.parts); }
 
 void Sampler::sample_faults(Nanos now) {
   const std::vector<fault::ActiveFault>& active = sources_.faults->active();
   for (const fault::ActiveFault& f : active) {
     if (std::find(last_faults_.begin(), last_faults_.end(), f.id) != last_faults_.end()) continue;
     char text[80];
-    *fmt::format_to_n(text, sizeof text - 1, "fault {} {} started", f.id, fault::info(f.spec.kind).name).out = '\0';
-    event(now, static_cast<std::uint16_t>(f.spec.slave), EventKind::fault_injected, static_cast<std::uint32_t>(f.id), 0, text);
+    *fmt::format_to_n(text, sizeof text - 1, "fault {} {} started", run_id(f.id), fault::info(f.spec.kind).name).out = '\0';
+    const std::uint16_t slave = f.spec.slave > 0 ? line_slave(static_cast<std::size_t>(f.spec.slave) - 1) : 0;
+    event(now, slave, EventKind::fault_injected, static_cast<std::uint32_t>(run_id(f.id)), 0, text);
   }
   for (const int id : last_faults_) {
     if (std::any_of(active.begin(), active.end(), [id](const fault::ActiveFault& f) { return f.id == id; })) continue;
     char text[48];
-    *fmt::format_to_n(text, sizeof text - 1, "fault {} ended", id).out = '\0';
-    event(now, 0, EventKind::fault_cleared, static_cast<std::uint32_t>(id), 0, text);
+    *fmt::format_to_n(text, sizeof text - 1, "fault {} ended", run_id(id)).out = '\0';
+    event(now, 0, EventKind::fault_cleared, static_cast<std::uint32_t>(run_id(id)), 0, text);
   }
   last_faults_.clear();  // keeps its capacity
   for (const fault::ActiveFault& f : active)
@@ -250,6 +254,11 @@ control::ControlReply Sampler::handle(const TelemetryRequest& r, Nanos now) {
     return fault_handler_(r.fault, now);
   }
   const PlantSet& p = r.plant;
+  const std::size_t own = network_.size() + place_.slaves_before;
+  if (p.slave > 0 && static_cast<std::size_t>(p.slave) > own && static_cast<std::size_t>(p.slave) <= own + place_.slaves_after)
+    return control::error_reply(control::ControlReply::Status::bad_request,
+                                fmt::format("plant_set: slave {} is served by another process of this run (vdrive run --processes); "
+                                            "plant changes reach slaves {}-{} only", p.slave, place_.slaves_before + 1, own));
   std::size_t index = 0;
   try {
     const ecat::SlaveRef ref = p.station != 0 ? ecat::SlaveRef{ecat::SlaveRef::Kind::address, p.station}
@@ -264,7 +273,7 @@ control::ControlReply Sampler::handle(const TelemetryRequest& r, Nanos now) {
   plant->set_external_load(0, p.external_load);
   char text[64];
   *fmt::format_to_n(text, sizeof text - 1, "external load {:g}", p.external_load).out = '\0';
-  event(now, static_cast<std::uint16_t>(index + 1), EventKind::plant_set, 0, 0, text);
+  event(now, line_slave(index), EventKind::plant_set, 0, 0, text);
   return {};
 }
 

@@ -37,6 +37,16 @@ namespace vdrive::telemetry {
 // Highest rate: one sample per 125 us, the shortest drive cycle of the products.
 constexpr double kMaxRateHz = 8000.0;
 
+// This process's place in a line cut over processes (`vdrive run --processes N`,
+// docs/scale-out.md): samples and events name slaves by whole-line position and faults by
+// run-wide id (control/run_fault_id.hpp), so the parts' publishers make one line to a subscriber.
+struct LinePlace {
+  std::size_t slaves_before = 0;  // the slaves of the parts before this one
+  std::size_t part = 0;           // 0-based: 0 is part 1
+  std::size_t parts = 1;
+  std::size_t slaves_after = 0;   // the slaves of the parts after this one (part 1 names them in refusals)
+};
+
 struct SamplerSources {
   const runtime::LoopCounters* counters = nullptr;  // line frame counters (0 if null)
   TurnaroundStats* turnaround = nullptr;            // from a TimedLink (0 if null)
@@ -54,6 +64,8 @@ public:
   ~Sampler() override;
   // Set before the loop starts; without one, fault requests are refused.
   void set_fault_handler(FaultHandler handler) { fault_handler_ = std::move(handler); }
+  // Set before the loop starts; one process is a line of its own by default.
+  void set_place(const LinePlace& place) { place_ = place; }
 
   // Loop thread.
   void poll(Nanos now) override;
@@ -87,6 +99,9 @@ private:
     std::array<char, 48> text_{};
   };
   void push(const Sample& s);
+  // Slave `index` (0-based, this process's) as the whole line numbers it (from 1).
+  std::uint16_t line_slave(std::size_t index) const { return static_cast<std::uint16_t>(index + 1 + place_.slaves_before); }
+  int run_id(int id) const;
   void event(Nanos now, std::uint16_t slave, EventKind kind, std::uint32_t value, std::uint32_t previous, const char* text);
   control::ControlReply handle(const TelemetryRequest& r, Nanos now);
 
@@ -105,6 +120,7 @@ private:
   std::atomic<std::uint64_t> dropped_{0};
   std::uint64_t stalls_seen_ = 0;  // host stalls already sent as events
   FaultHandler fault_handler_;
+  LinePlace place_;
 };
 
 }  // namespace vdrive::telemetry

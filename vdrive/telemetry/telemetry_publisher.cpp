@@ -21,10 +21,10 @@ namespace msg = vdrive::msg::dds_;
 using eprosima::fastrtps::types::ReturnCode_t;
 
 struct TelemetryPublisher::Impl {
-  Impl(Sampler& s, int domain, std::function<void()> w)
+  Impl(Sampler& s, int domain, std::function<void()> w, PublisherOptions o)
       : sampler(s), node(domain), axis(node.writer(Topic::axis_state)), bus(node.writer(Topic::bus_state)),
         events(node.writer(Topic::events)), replies(node.writer(Topic::control_reply)),
-        requests(node.reader(Topic::control_request)), wake(std::move(w)) {}
+        requests(o.take_requests ? node.reader(Topic::control_request) : nullptr), wake(std::move(w)), route(std::move(o.route)) {}
 
   // Publishes everything queued; returns how many.
   std::uint64_t drain() {
@@ -100,6 +100,7 @@ struct TelemetryPublisher::Impl {
 
   // Control requests in: parsed here, carried out on the loop thread.
   void take_requests() {
+    if (requests == nullptr) return;
     msg::ControlRequest_ m;
     dds::SampleInfo info;
     while (requests->take_next_sample(&m, &info) == ReturnCode_t::RETCODE_OK) {
@@ -111,6 +112,12 @@ struct TelemetryPublisher::Impl {
       }
       try {
         TelemetryRequest r = parse_telemetry_request(m.request());
+        if (r.kind == TelemetryRequest::Kind::fault && route) {
+          const control::ControlReply answer = route(r.fault, m.request());
+          if (!answer.ok()) spdlog::warn("telemetry control request from {} refused: {}", m.client(), answer.error);
+          reply(m.client(), m.request_id(), answer);
+          continue;
+        }
         r.ticket = next_ticket++;
         const std::uint64_t ticket = r.ticket;
         if (!sampler.request(std::move(r))) {
@@ -142,15 +149,16 @@ struct TelemetryPublisher::Impl {
   dds::DataWriter* bus;
   dds::DataWriter* events;
   dds::DataWriter* replies;
-  dds::DataReader* requests;
+  dds::DataReader* requests;  // null: this process takes no requests
   std::function<void()> wake;
+  FaultRoute route;
   std::map<std::uint64_t, std::pair<std::string, std::uint32_t>> pending;  // ticket -> requester
   std::uint64_t next_ticket = 1;
   control::RequestRate rate;  // over the bound: answered here, never queued for the loop
 };
 
-TelemetryPublisher::TelemetryPublisher(Sampler& sampler, int domain, std::function<void()> wake)
-    : impl_(std::make_unique<Impl>(sampler, domain, std::move(wake))) {
+TelemetryPublisher::TelemetryPublisher(Sampler& sampler, int domain, std::function<void()> wake, PublisherOptions options)
+    : impl_(std::make_unique<Impl>(sampler, domain, std::move(wake), std::move(options))) {
   // Half a sample period between rounds (1..10 ms): the queue holds kQueueSize samples, far more
   // than arrive in that time, and control requests wait at most that long.
   const auto pause = std::chrono::nanoseconds(std::clamp<Nanos>(sampler.period() / 2, 1'000'000, 10'000'000));
