@@ -237,5 +237,20 @@ TEST(HostStallRecords, TheDescriptionFitsAFixedBufferAndListsSlavesAsRanges) {
   EXPECT_STREQ(small.data(), "host stall 3.5 ms (");
 }
 
+// A later part of `vdrive run --processes` names its slaves by their place in the whole line.
+TEST(HostStallRecords, ALaterPartNamesItsSlavesByWholeLinePosition) {
+  HostStall s;
+  s.length = 3 * kMs;
+  s.threshold = 2 * kMs;
+  s.sync0_slaves = 0b11;  // its own slaves 1 and 2
+  s.sync0_pulses = 2;
+  s.step_slaves = 0b11;
+  s.control_steps = 24;
+  EXPECT_EQ(describe(s, 2), "host stall 3.0 ms (threshold 2.0 ms): slaves 3-4 missed 1 SYNC0 pulse and caught up 24 control steps");
+  std::array<char, 128> buf{};
+  describe(s, buf, 2);
+  EXPECT_STREQ(buf.data(), describe(s, 2).c_str());
+}
+
 }  // namespace
 }  // namespace vdrive::runtime

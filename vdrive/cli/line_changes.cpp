@@ -56,11 +56,11 @@ std::vector<std::string> line_changes(const runtime::StatusSample& before, const
   return lines;
 }
 
-std::vector<std::string> host_stall_lines(const runtime::HostStalls& stalls, std::uint64_t& seen) {
+std::vector<std::string> host_stall_lines(const runtime::HostStalls& stalls, std::uint64_t& seen, std::size_t slaves_before) {
   std::vector<std::string> lines;
   const std::uint64_t count = stalls.count();
   for (std::uint64_t k = seen + 1; k <= count; ++k) {
-    if (const std::optional<runtime::HostStall> s = stalls.get(k)) lines.push_back(runtime::describe(*s));
+    if (const std::optional<runtime::HostStall> s = stalls.get(k)) lines.push_back(runtime::describe(*s, slaves_before));
     else if (k + runtime::HostStalls::kLog <= count) {  // overwritten: say how many in one go
       const std::uint64_t skipped = count - runtime::HostStalls::kLog + 1 - k;
       lines.push_back(fmt::format("{} more host stall{} (longest so far {})", skipped, skipped == 1 ? "" : "s",

@@ -26,7 +26,7 @@ std::vector<std::string> line_changes(const runtime::StatusSample& before, const
                                       const network::Network& network, std::size_t slaves_before = 0);
 
 // Each stall recorded since number `seen` (updated), as runtime::describe() says it; stalls the
-// record ring no longer holds are counted in one line.
-std::vector<std::string> host_stall_lines(const runtime::HostStalls& stalls, std::uint64_t& seen);
+// record ring no longer holds are counted in one line. `slaves_before`: as for line_changes().
+std::vector<std::string> host_stall_lines(const runtime::HostStalls& stalls, std::uint64_t& seen, std::size_t slaves_before = 0);
 
 }  // namespace vdrive::cli

@@ -117,7 +117,7 @@ void RunStatus::print_loop() {
     while (!stop_.load() && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     if (stop_.load()) break;
     // Stalls first: a fault they explain is logged after them.
-    for (const std::string& stall : host_stall_lines(counters_.stalls, stalls_seen)) spdlog::warn("{}", stall);
+    for (const std::string& stall : host_stall_lines(counters_.stalls, stalls_seen, slaves_before_)) spdlog::warn("{}", stall);
     runtime::StatusSample now = runtime::take_sample(status_, counters_, steady_now());
     for (const std::string& change : line_changes(*last_change, now, network_, slaves_before_)) spdlog::info("{}", change);
     last_change = now;
@@ -132,7 +132,7 @@ void RunStatus::print_loop() {
     before = std::move(now);
   }
   if (drawn_.exchange(false)) std::fprintf(stderr, "\n");
-  for (const std::string& stall : host_stall_lines(counters_.stalls, stalls_seen)) spdlog::warn("{}", stall);
+  for (const std::string& stall : host_stall_lines(counters_.stalls, stalls_seen, slaves_before_)) spdlog::warn("{}", stall);
 }
 
 }  // namespace vdrive::cli

@@ -42,6 +42,7 @@ std::uint32_t periods(Nanos late, Nanos period) {
 // iterator: no allocation).
 struct Text {
   std::span<char> out;
+  std::size_t first = 1;  // the number of bit 0's slave
   std::size_t used = 0;
   template <typename... A> void add(fmt::format_string<A...> f, A&&... args) {
     if (used + 1 >= out.size()) return;
@@ -49,15 +50,15 @@ struct Text {
     used += std::min(r.size, out.size() - 1 - used);
     out[used] = '\0';
   }
-  // "1-3,5" (slaves from 1)
+  // "1-3,5" (slaves from `first`)
   void slaves(std::uint64_t mask) {
     const char* sep = "";
     for (int i = 0; i < 64; ++i) {
       if (!(mask >> i & 1)) continue;
       int j = i;
       while (j + 1 < 64 && (mask >> (j + 1) & 1)) ++j;
-      if (j == i) add("{}{}", sep, i + 1);
-      else add("{}{}-{}", sep, i + 1, j + 1);
+      if (j == i) add("{}{}", sep, first + static_cast<std::size_t>(i));
+      else add("{}{}-{}", sep, first + static_cast<std::size_t>(i), first + static_cast<std::size_t>(j));
       sep = ",";
       i = j;
     }
@@ -151,9 +152,9 @@ std::optional<HostStall> HostStalls::just_before(Nanos now) const {
   return found;
 }
 
-std::size_t describe(const HostStall& s, std::span<char> out) {
+std::size_t describe(const HostStall& s, std::span<char> out, std::size_t slaves_before) {
   if (out.empty()) return 0;
-  Text t{out};
+  Text t{out, slaves_before + 1};
   out[0] = '\0';
   t.add("host stall {:.1f} ms (threshold {:.1f} ms)", static_cast<double>(s.length) / 1e6, static_cast<double>(s.threshold) / 1e6);
   if (s.sync0_slaves == 0 && s.step_slaves == 0) {
@@ -179,9 +180,9 @@ std::size_t describe(const HostStall& s, std::span<char> out) {
   return t.used;
 }
 
-std::string describe(const HostStall& stall) {
+std::string describe(const HostStall& stall, std::size_t slaves_before) {
   std::array<char, 256> buf{};
-  const std::size_t n = describe(stall, buf);
+  const std::size_t n = describe(stall, buf, slaves_before);
   return std::string(buf.data(), n);
 }
 

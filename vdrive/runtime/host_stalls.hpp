@@ -105,9 +105,10 @@ private:
 
 // "host stall 12.3 ms (threshold 2.0 ms): slaves 1-3 got 1 of 12 SYNC0 pulses, drives 1-3 ran 12
 // control periods late" into `out` (NUL-terminated, cut to fit; no allocation: for the loop
-// thread). Returns the characters written.
-std::size_t describe(const HostStall& stall, std::span<char> out);
-std::string describe(const HostStall& stall);
+// thread). Returns the characters written. `slaves_before`: the slaves of the line before this
+// process's (a later part of `vdrive run --processes`), so slaves are named by whole-line position.
+std::size_t describe(const HostStall& stall, std::span<char> out, std::size_t slaves_before = 0);
+std::string describe(const HostStall& stall, std::size_t slaves_before = 0);
 // " after a host stall of 12.3 ms" for a fault line, when `stall` is one.
 std::string after_stall(const std::optional<HostStall>& stall);
 // "12.3 ms"

@@ -202,7 +202,7 @@ void Sampler::sample_stalls() {
     e.kind = EventKind::host_stall;
     e.value = static_cast<std::uint32_t>(std::min<Nanos>(s->length / 1000, UINT32_MAX));
     e.previous = static_cast<std::uint32_t>(std::min<Nanos>(s->threshold / 1000, UINT32_MAX));
-    runtime::describe(*s, e.text);
+    runtime::describe(*s, e.text, place_.slaves_before);
     push(e);
   }
 }
