@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <thread>
 
 #include "tests/support/station_addresses.hpp"
@@ -54,6 +55,24 @@ TEST(ShiftSlaveNumbers, PositionsMoveAddressesStay) {
   EXPECT_EQ(shift_slave_numbers("the network has cables into slaves 1..1", 2), "the network has cables into slaves 1..1");
   EXPECT_EQ(shift_slave_numbers("no slave here", 2), "no slave here");
   EXPECT_EQ(shift_slave_numbers("slave ", 2), "slave ");
+  // A network file's name for its unnamed third slave, quoted, is a name in every part.
+  EXPECT_EQ(shift_slave_numbers("'slave 3' (slave 1, ds1000a) has no object", 2), "'slave 3' (slave 3, ds1000a) has no object");
+}
+
+// Each part of a network file cut by --processes: its slaves' names and the named signals among
+// them, numbered from the part's first (machine::line_part). Part 2's slave is unnamed in the file,
+// so its name is the file's "slave 3".
+network::NetworkOptions part_one_of_file() {
+  network::NetworkOptions o;
+  o.slave_names = {"x", "y"};
+  o.signals = {{"mode", network::SignalPoint{0, std::nullopt, 0x6060, 0}, ""}};
+  return o;
+}
+network::NetworkOptions part_two_of_file() {
+  network::NetworkOptions o;
+  o.slave_names = {"slave 3"};
+  o.signals = {{"door", network::SignalPoint{0, std::nullopt, 0x6060, 0}, ""}};
+  return o;
 }
 
 class PartRouterTest : public ::testing::Test {
@@ -78,8 +97,8 @@ protected:
   ControlReply ask(const std::string& line) { return parse_reply(router_->answer(line)); }
 
   VirtualClock clock_{1'000'000};
-  network::Network line1_{std::vector<std::string>{"a6b", "ds5c1"}, clock_};  // slaves 1-2
-  network::Network line2_{std::vector<std::string>{"ds1000a"}, clock_};       // slave 3
+  network::Network line1_{std::vector<std::string>{"a6b", "ds5c1"}, clock_, part_one_of_file()};  // slaves 1-2
+  network::Network line2_{std::vector<std::string>{"ds1000a"}, clock_, part_two_of_file()};       // slave 3
   FaultService own_{line1_, nullptr, nullptr};
   FaultService second_{line2_, nullptr, nullptr};
   std::map<std::string, std::vector<std::string>> asked_;
@@ -192,6 +211,120 @@ TEST_F(PartRouterTest, APartThatHasEndedIsNamedAndTheOthersStillReport) {
   EXPECT_EQ(clear.status, ControlReply::Status::failed);
   EXPECT_THAT(clear.error, HasSubstr("1 fault(s) cleared in the other parts"));
   EXPECT_TRUE(own_.injector().active().empty());
+}
+
+std::int64_t read(network::Network& net, const std::string& point) { return net.resolve(net.parse_point(point)).read(); }
+
+TEST_F(PartRouterTest, SignalsListEveryPartsNamedSignalsInLineOrder) {
+  const ControlReply r = ask(R"({"op":"signals"})");
+  ASSERT_TRUE(r.ok()) << r.error;
+  ASSERT_EQ(r.signals.size(), 2u);
+  EXPECT_EQ(r.signals[0].name, "mode");
+  EXPECT_EQ(r.signals[0].point, "x 0x6060:0");
+  EXPECT_EQ(r.signals[1].name, "door");
+  EXPECT_EQ(r.signals[1].point, "slave 3 0x6060:0") << "a name, not a position to shift";
+  EXPECT_EQ(r.signals[1].type, "I8");
+  ASSERT_EQ(asked_["part2.sock"].size(), 1u);
+}
+
+TEST_F(PartRouterTest, ANamedSignalOfALaterPartIsFoundThere) {
+  const ControlReply set = ask(R"({"op":"signal_set","signal":"door","value":8})");
+  ASSERT_TRUE(set.ok()) << set.error;
+  ASSERT_EQ(set.signals.size(), 1u);
+  EXPECT_EQ(set.signals[0].name, "door");
+  EXPECT_EQ(set.signals[0].value, 8);
+  EXPECT_EQ(read(line2_, "1 0x6060:0"), 8);
+  EXPECT_EQ(read(line1_, "1 0x6060:0"), 0) << "part 1's own entry is untouched";
+  // A point at a named slave is asked the same way; part 1's own are answered there.
+  const ControlReply by_slave_name = ask(R"({"op":"signal_get","signal":"slave 3 0x6060:0"})");
+  ASSERT_TRUE(by_slave_name.ok()) << by_slave_name.error;
+  EXPECT_EQ(by_slave_name.signals.at(0).value, 8);
+  asked_.clear();
+  ASSERT_TRUE(ask(R"({"op":"signal_set","signal":"mode","value":-2})").ok());
+  EXPECT_EQ(read(line1_, "1 0x6060:0"), -2);
+  EXPECT_TRUE(asked_.empty());
+  // The part that has the signal refuses the value: that refusal, not "no part has it".
+  const ControlReply too_big = ask(R"({"op":"signal_set","signal":"door","value":300})");
+  EXPECT_EQ(too_big.status, ControlReply::Status::bad_request);
+  EXPECT_THAT(too_big.error, HasSubstr("signal 'door': 300 is outside"));
+}
+
+TEST_F(PartRouterTest, ASignalNoPartHasIsOneErrorSayingWhatEachHas) {
+  const ControlReply none = ask(R"({"op":"signal_get","signal":"window"})");
+  EXPECT_EQ(none.status, ControlReply::Status::bad_request);
+  EXPECT_EQ(none.error, "no part of this run's line has signal 'window' (part 1 (slaves 1-2) has mode; part 2 (slave 3) "
+                        "has door) and not a point: 'window': expected SLAVE INDEX:SUBINDEX (e.g. 'do 0x7000:1') or "
+                        "SLAVE.CONNECTION (e.g. 'x.home')");
+  const ControlReply no_slave = ask(R"({"op":"signal_get","signal":"z.home"})");
+  EXPECT_EQ(no_slave.status, ControlReply::Status::bad_request);
+  EXPECT_EQ(no_slave.error, "'z.home': no part of this run's line has a slave 'z' (name one of the network file's "
+                            "slaves, or give a position 1-3)");
+  // A slave part 1 has, with an entry it lacks: part 1's answer, the other parts are not asked.
+  asked_.clear();
+  EXPECT_THAT(ask(R"({"op":"signal_get","signal":"y 0x7000:1"})").error, HasSubstr("'y' (slave 2, ds5c1) has no object 7000h:01h"));
+  EXPECT_TRUE(asked_.empty());
+}
+
+TEST_F(PartRouterTest, APointAtALaterPositionGoesToItsPartAtItsLocalPosition) {
+  const ControlReply set = ask(R"({"op":"signal_set","signal":"3 0x6060:0","value":6})");
+  ASSERT_TRUE(set.ok()) << set.error;
+  ASSERT_EQ(asked_["part2.sock"].size(), 1u);
+  EXPECT_THAT(asked_["part2.sock"][0], HasSubstr(R"("signal":"1 0x6060:0")"));
+  EXPECT_EQ(read(line2_, "1 0x6060:0"), 6);
+  ASSERT_EQ(set.signals.size(), 1u);
+  EXPECT_EQ(set.signals[0].name, "3 0x6060:0") << "as the user asked for it";
+  EXPECT_EQ(set.signals[0].point, "slave 3 0x6060:0");
+  EXPECT_EQ(set.signals[0].value, 6);
+  EXPECT_THAT(ask(R"({"op":"signal_get","signal":"3 0x7000:1"})").error,
+              HasSubstr("'slave 3' (slave 3, ds1000a) has no object 7000h:01h"));
+  // Part 1's positions stay here; beyond the line is refused with the line's length.
+  asked_.clear();
+  ASSERT_TRUE(ask(R"({"op":"signal_get","signal":"2 0x6060:0"})").ok());
+  EXPECT_TRUE(asked_.empty());
+  const ControlReply beyond = ask(R"({"op":"signal_get","signal":"4.home"})");
+  EXPECT_EQ(beyond.status, ControlReply::Status::bad_request);
+  EXPECT_EQ(beyond.error, "'4.home': no slave 4 (this run's line has slaves 1-3)");
+}
+
+TEST_F(PartRouterTest, SignalsOfAPartThatDoesNotAnswer) {
+  gone_ = true;
+  const ControlReply list = ask(R"({"op":"signals"})");
+  EXPECT_EQ(list.status, ControlReply::Status::failed);
+  EXPECT_THAT(list.error, HasSubstr("part 2 (slave 3) does not answer"));
+  EXPECT_THAT(list.error, HasSubstr("the other parts' signals: mode (x 0x6060:0) = 0"));
+  const ControlReply named = ask(R"({"op":"signal_get","signal":"door"})");
+  EXPECT_EQ(named.status, ControlReply::Status::failed);
+  EXPECT_THAT(named.error, HasSubstr("no part of this run's line has signal 'door' (part 1 (slaves 1-2) has mode)"));
+  EXPECT_THAT(named.error, HasSubstr("part 2 (slave 3) does not answer"));
+  const ControlReply point = ask(R"({"op":"signal_get","signal":"3 0x6060:0"})");
+  EXPECT_EQ(point.status, ControlReply::Status::failed);
+  EXPECT_THAT(point.error, HasSubstr("part 2 (slave 3) does not answer"));
+  // Part 1's own signals still work.
+  EXPECT_TRUE(ask(R"({"op":"signal_get","signal":"mode"})").ok());
+}
+
+// `--processes` without a network file: no slave names, so a later part's points carry its own
+// positions, which come back as the whole line's.
+TEST(PartRouterPlainLineTest, PointsComeBackAtTheWholeLinesPositions) {
+  VirtualClock clock{1'000'000};
+  network::Network one{std::vector<std::string>{"a6b", "ds5c1"}, clock};
+  network::Network two{std::vector<std::string>{"ds1000a"}, clock};
+  FaultService own(one, nullptr, nullptr), second(two, nullptr, nullptr);
+  PartRouter router(
+      2, {{2, 1, "part2.sock"}}, [&](const ControlRequest& r) { return own.handle(r, clock.now()); },
+      [&](const std::string&, std::string_view line, Nanos) { return format_reply(second.handle(parse_request(line), clock.now())); });
+  const ControlReply get = parse_reply(router.answer(R"({"op":"signal_get","signal":"3 0x6060:0"})"));
+  ASSERT_TRUE(get.ok()) << get.error;
+  EXPECT_EQ(get.signals.at(0).name, "3 0x6060:0");
+  EXPECT_EQ(get.signals.at(0).point, "3 0x6060:0");
+  const ControlReply too_big = parse_reply(router.answer(R"({"op":"signal_set","signal":"3 0x6060:0","value":300})"));
+  EXPECT_EQ(too_big.status, ControlReply::Status::bad_request);
+  EXPECT_THAT(too_big.error, HasSubstr("signal '3 0x6060:0': 300 is outside")) << "the user's point, not part 2's '1 0x6060:0'";
+  EXPECT_THAT(parse_reply(router.answer(R"({"op":"signal_get","signal":"3 0x7000:1"})")).error,
+              HasSubstr("slave 3 (ds1000a) has no object 7000h:01h"));
+  const ControlReply list = parse_reply(router.answer(R"({"op":"signals"})"));
+  ASSERT_TRUE(list.ok()) << list.error;
+  EXPECT_TRUE(list.signals.empty());
 }
 
 // Over real sockets: a part whose socket is gone, and one that accepts but never answers.

@@ -7,8 +7,10 @@
 #include <spdlog/spdlog.h>
 
 #include <cctype>
+#include <optional>
 #include <nlohmann/json.hpp>
 
+#include "common/number_text.hpp"
 #include "ethercat/slave_ref.hpp"
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/control_socket.hpp"
@@ -36,6 +38,47 @@ std::string join(const std::vector<std::string>& parts) {
   return out;
 }
 
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+// The slave of a point as network::parse_signal_point splits it ("3 0x6010:1" -> "3", "x.home" ->
+// "x"), or empty for a named signal (a signal's name has neither ' ' nor '.').
+std::string_view point_slave(std::string_view point) {
+  std::size_t at = point.find_last_of(' ');
+  if (at == std::string_view::npos) at = point.find_last_of('.');
+  return at == std::string_view::npos ? std::string_view{} : point.substr(0, at);
+}
+
+// A point whose slave is a position (as a part without slave names formats it) moved by `offset`;
+// a named slave (a network file's "x", or its "slave 3" for an unnamed one) is the same in every part.
+std::string shift_point(const std::string& point, std::size_t offset) {
+  const std::string_view slave = point_slave(point);
+  const std::optional<std::uint64_t> position = parse_unsigned(slave);
+  if (!position) return point;
+  return std::to_string(*position + offset) + point.substr(slave.size());
+}
+
+// How network::named_or_parsed_point refuses a text that is no signal of that part: for a named
+// signal any such refusal, for a point only when the part has no slave of that name (a slave it
+// has, with an entry that does not parse, is the user's mistake, not another part's slave).
+bool lacks_signal(const ControlReply& reply, const std::string& signal) {
+  if (reply.status != Status::bad_request || !reply.error.starts_with(fmt::format("no signal '{}' (", signal))) return false;
+  const std::string_view slave = point_slave(signal);
+  return slave.empty() || reply.error.find(fmt::format(": '{}': no slave '{}' (", signal, slave)) != std::string::npos;
+}
+
+// "mode, y_home" from a refusal's "(signals: mode, y_home)", "none" from "(the network names none)".
+std::string signals_listed(const std::string& refusal, const std::string& signal) {
+  const std::size_t from = fmt::format("no signal '{}' (", signal).size();
+  const std::size_t to = refusal.find(") and not a point: ", from);
+  if (to == std::string::npos) return refusal;
+  const std::string_view listed = std::string_view(refusal).substr(from, to - from);
+  return listed.starts_with("signals: ") ? std::string(listed.substr(9)) : "none";
+}
+
 }  // namespace
 
 std::string shift_slave_numbers(std::string_view text, std::size_t offset) {
@@ -48,6 +91,11 @@ std::string shift_slave_numbers(std::string_view text, std::size_t offset) {
     if (found == std::string_view::npos) break;
     std::size_t digits = found + kWord.size();
     out.append(text.substr(at, digits - at));
+    // "'slave 3'" is a name as given (a network file's name for its unnamed third slave), not a position.
+    if (found > 0 && text[found - 1] == '\'') {
+      at = digits;
+      continue;
+    }
     std::size_t end = digits;
     while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end])) != 0) ++end;
     // "slave 0x1003" is an address, the same in every part; "slave 12" a position here.
@@ -91,24 +139,30 @@ ControlReply PartRouter::route(const ControlRequest& r, std::string_view line) {
     case ControlRequest::Op::clear_all:
     case ControlRequest::Op::list: return fan_out(r);
     case ControlRequest::Op::find_station: return find_station(r, line);
+    case ControlRequest::Op::signals: return list_signals(r);
     case ControlRequest::Op::signal_get:
-    case ControlRequest::Op::signal_set:
-    case ControlRequest::Op::signals: break;  // a network file's signals; --processes serves none
+    case ControlRequest::Op::signal_set: return signal(r, line);
   }
   return local_(r);
+}
+
+std::size_t PartRouter::line_slaves() const {
+  return later_.empty() ? own_slaves_ : later_.back().first + later_.back().count;
+}
+
+std::size_t PartRouter::part_at(std::size_t position) const {
+  for (std::size_t k = 1; k < parts(); ++k) {
+    const RemotePart& p = later_[k - 1];
+    if (position > p.first && position <= p.first + p.count) return k;
+  }
+  return 0;
 }
 
 ControlReply PartRouter::inject(const ControlRequest& r, std::string_view line) {
   const fault::FaultSpec& s = r.fault;
   const bool at_a_slave = fault::acts_at_slave(s.kind);
   if (at_a_slave && s.slave == 0 && s.station != 0) return inject_at_station(r, line);
-  std::size_t part = 0;
-  if (at_a_slave && s.slave > 0) {
-    for (std::size_t k = 1; k < parts(); ++k) {
-      const RemotePart& p = later_[k - 1];
-      if (static_cast<std::size_t>(s.slave) > p.first && static_cast<std::size_t>(s.slave) <= p.first + p.count) part = k;
-    }
-  }
+  const std::size_t part = at_a_slave && s.slave > 0 ? part_at(static_cast<std::size_t>(s.slave)) : 0;
   // Wire faults act at part 1's port to the master, for the whole line; a position beyond the
   // line is refused here, where the injector knows the line's length (set_later_slaves).
   if (part == 0) {
@@ -214,6 +268,77 @@ ControlReply PartRouter::find_station(const ControlRequest& r, std::string_view 
                                                       ecat::hex_address(r.station), join(not_found)));
 }
 
+ControlReply PartRouter::list_signals(const ControlRequest& r) {
+  ControlReply merged = local_(r);
+  if (!merged.ok()) return merged;
+  std::vector<std::string> silent;
+  for (std::size_t k = 1; k < parts(); ++k) {
+    ControlReply there = forward(k, op_line("signals"));
+    if (!there.ok()) {
+      silent.push_back(there.error);
+      continue;
+    }
+    for (SignalStatus& s : there.signals) merged.signals.push_back(std::move(s));
+  }
+  if (silent.empty()) return merged;
+  // As for faults: the part that does not answer is an error, and the user still learns the rest.
+  std::vector<std::string> listed;
+  for (const SignalStatus& s : merged.signals) listed.push_back(fmt::format("{} ({}) = {}", s.name, s.point, s.value));
+  return error_reply(Status::failed, fmt::format("{}; {}", join(silent),
+                                                 listed.empty() ? "the other parts name no signals"
+                                                                : fmt::format("the other parts' signals: {}", fmt::join(listed, ", "))));
+}
+
+ControlReply PartRouter::signal(const ControlRequest& r, std::string_view line) {
+  const std::optional<std::uint64_t> position = parse_unsigned(point_slave(r.signal));
+  return position ? signal_at(r, line, *position) : signal_anywhere(r, line);
+}
+
+ControlReply PartRouter::signal_at(const ControlRequest& r, std::string_view line, std::uint64_t position) {
+  // Part 1 would say "or a position 1-2", its own slaves; the user counts the whole line.
+  if (position == 0 || position > line_slaves())
+    return error_reply(Status::bad_request, fmt::format("'{}': no slave {} (this run's line has slaves 1-{})", r.signal,
+                                                        position, line_slaves()));
+  const std::size_t part = part_at(position);
+  if (part == 0) return local_(r);
+  const std::string local_point =
+      std::to_string(position - first_of(part)) + r.signal.substr(point_slave(r.signal).size());
+  json j = json::parse(line);
+  j["signal"] = local_point;
+  ControlReply reply = forward(part, j.dump());
+  // The part names the point as it was asked of it; the user asked for the whole line's.
+  for (SignalStatus& s : reply.signals) s.name = r.signal;
+  reply.error = replace_all(reply.error, fmt::format("'{}'", local_point), fmt::format("'{}'", r.signal));
+  return reply;
+}
+
+ControlReply PartRouter::signal_anywhere(const ControlRequest& r, std::string_view line) {
+  const ControlReply here = local_(r);
+  if (!lacks_signal(here, r.signal)) return here;
+  std::vector<std::string> listed{fmt::format("{} has {}", part_name(0), signals_listed(here.error, r.signal))};
+  std::vector<std::string> silent;
+  for (std::size_t k = 1; k < parts(); ++k) {
+    ControlReply there = forward(k, std::string(line));
+    // Signal and slave names are the network file's, each in one part: the first that has it is the one.
+    if (lacks_signal(there, r.signal)) listed.push_back(fmt::format("{} has {}", part_name(k), signals_listed(there.error, r.signal)));
+    else if (there.status == Status::failed) silent.push_back(there.error);
+    else return there;
+  }
+  const std::string_view slave = point_slave(r.signal);
+  std::string what;
+  if (slave.empty()) {
+    // Part 1's reason why it is no point holds for every part: a text without ' ' or '.' never parses.
+    const std::size_t tail = here.error.find(") and not a point: ");
+    what = fmt::format("no part of this run's line has signal '{}' ({}){}", r.signal, join(listed),
+                       tail == std::string::npos ? "" : here.error.substr(tail + 1));
+  } else {
+    what = fmt::format("'{}': no part of this run's line has a slave '{}' (name one of the network file's slaves, or "
+                       "give a position 1-{})", r.signal, slave, line_slaves());
+  }
+  if (!silent.empty()) return error_reply(Status::failed, fmt::format("{}; {}", what, join(silent)));
+  return error_reply(Status::bad_request, what);
+}
+
 ControlReply PartRouter::forward(std::size_t part, const std::string& line) {
   const RemotePart& p = later_[part - 1];
   ControlReply reply;
@@ -234,6 +359,7 @@ ControlReply PartRouter::forward(std::size_t part, const std::string& line) {
     f.id = run_fault_id(part, f.id, parts());
     f.description = shift_slave_numbers(f.description, p.first);
   }
+  for (SignalStatus& s : reply.signals) s.point = shift_point(s.point, p.first);
   return reply;
 }
 

@@ -11,8 +11,12 @@
 //     no part of the line has it;
 //   - `clear ID` goes to the part the run-wide id names (run_fault_id.hpp); `list`, `clear_all`
 //     and `find_station` ask every part and merge the answers;
+//   - signals (a network file's, each part serving those of its slaves): `signals` asks every
+//     part and lists them in line order; a named signal, or a point at a named slave ("x.home"),
+//     is asked of part 1, then of the later parts in order, until one has it; a point at a
+//     position ("3 0x6010:1") goes to the part that serves it with the position made local;
 //   - replies come back with run-wide ids, and "slave N" in a later part's descriptions and errors
-//     as the whole line's position.
+//     and a position in its signal points as the whole line's position.
 // A later part that has ended or does not answer within the timeout is an error naming the part
 // and its slaves ("part 2 (slave 3) does not answer: ..."); a fan-out still reports what the
 // other parts did.
@@ -20,6 +24,7 @@
 // Runs on the control socket's thread (ControlServer's handler), never on the event loop: a part
 // that hangs delays only this thread. Part 1's own requests go through `local` (FaultService::call).
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -66,10 +71,19 @@ private:
   ControlReply clear(const ControlRequest& request);
   ControlReply fan_out(const ControlRequest& request);
   ControlReply find_station(const ControlRequest& request, std::string_view line);
+  ControlReply list_signals(const ControlRequest& request);
+  ControlReply signal(const ControlRequest& request, std::string_view line);
+  // A point whose slave is a whole-line position, in the part that serves it.
+  ControlReply signal_at(const ControlRequest& request, std::string_view line, std::uint64_t position);
+  // A named signal, or a point at a named slave: part 1 first, then the later parts in order.
+  ControlReply signal_anywhere(const ControlRequest& request, std::string_view line);
   // One request line to later part `part` (1-based in parts(), >= 1); the reply with positions
   // and ids as part 1 shows them, or a `failed` reply naming the part.
   ControlReply forward(std::size_t part, const std::string& line);
   std::size_t first_of(std::size_t part) const { return part == 0 ? 0 : later_[part - 1].first; }
+  std::size_t line_slaves() const;
+  // The part (0 = part 1) that serves whole-line position `position` (from 1); 0 beyond the line.
+  std::size_t part_at(std::size_t position) const;
 
   std::size_t own_slaves_;
   std::vector<RemotePart> later_;
