@@ -26,12 +26,7 @@ in_ns() { ip netns exec "$NS" "$@"; }
 tlm() { in_ns "$VDRIVE" telemetry "$@" --domain "$DOMAIN"; }
 
 # start_line, with lo up in the namespace before vdrive starts (DDS needs an interface).
-ip netns add "$NS" || fail "cannot create namespace $NS"
-ip -n "$NS" link set lo up
-ip link add "$M_IF" type veth peer name "$S_IF" || fail "cannot create veth pair"
-ip link set "$S_IF" netns "$NS" || fail "cannot move $S_IF into $NS"
-ip link set "$M_IF" up
-ip -n "$NS" link set "$S_IF" up
+make_veth_line lo
 ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" --processes 2 --control "$WORK/control.sock" --no-status --telemetry \
   --telemetry-rate "$RATE" --domain "$DOMAIN" --drive a6b ds5c1 ds1000a >"$WORK/vdrive.log" 2>&1 &
 VDRIVE_PID=$!

@@ -4,7 +4,9 @@
 #
 # The caller sets VDRIVE and MASTER, then calls:
 #   require_tools TOOL...     skip (exit 77) unless root and every TOOL is installed
-#   start_line [ARGS...]      namespace + veth + `vdrive run --iface S_IF ARGS...` (log: $WORK/vdrive.log)
+#   make_veth_line [lo]       namespace + veth, nothing served yet (lo: the namespace's loopback up,
+#                             which DDS telemetry needs)
+#   start_line [ARGS...]      make_veth_line + `vdrive run --iface S_IF ARGS...` (log: $WORK/vdrive.log)
 #   restart_line [ARGS...]    stop that `vdrive run` and start another on the same veth pair
 #   start_capture FILE        tshark on the master end, into FILE, until stop_capture
 #   wait_for_line [ARGS...]   retry `vdrive-master scan --iface M_IF ARGS...` until it answers
@@ -45,12 +47,17 @@ cleanup() {
 trap cleanup EXIT
 trap 'exit 1' INT TERM
 
-start_line() {
+make_veth_line() {
   ip netns add "$NS" || fail "cannot create namespace $NS"
+  [ "${1:-}" = lo ] && ip -n "$NS" link set lo up
   ip link add "$M_IF" type veth peer name "$S_IF" || fail "cannot create veth pair"
   ip link set "$S_IF" netns "$NS" || fail "cannot move $S_IF into $NS"
   ip link set "$M_IF" up
   ip -n "$NS" link set "$S_IF" up
+}
+
+start_line() {
+  make_veth_line
   ip netns exec "$NS" "$VDRIVE" run --iface "$S_IF" "$@" >"$WORK/vdrive.log" 2>&1 &
   VDRIVE_PID=$!
 }
