@@ -50,7 +50,7 @@ expect_no_fault "after sdo-read (the line left in Pre-Op)"
 
 # --rt-priority, --reply-timeout-us: as cia402_sine.sh and op_three_slaves.sh (a loaded host).
 "$MASTER" op --rt-priority 70 --iface "$M_IF" --dc --cycle-us 1000 --reply-timeout-us 200000 \
-  --sine --revolutions 0.25 --frequency 0.5 --seconds 2 >"$WORK/op.txt" 2>"$WORK/op.err"
+  --sine --revolutions 0.1 --frequency 0.5 --seconds 2 >"$WORK/op.txt" 2>"$WORK/op.err"
 rc=$?
 cat "$WORK/op.txt" "$WORK/op.err"
 [ $rc -eq 0 ] || fail "vdrive-master op --sine exited $rc"

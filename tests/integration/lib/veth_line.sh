@@ -15,6 +15,10 @@
 #   alarms_followed_host_stalls   whether vdrive raised alarms and every one came right after a
 #                             host stall (its log ends such lines "after a host stall of N ms"):
 #                             a run that failed so failed for the host, not for vdrive
+#   sine_failed_for_host OUT  whether a failed `vdrive-master op --sine` (its output in OUT) failed
+#                             for the host: the master itself sent a cycle 2 ms or more late (its
+#                             "worst lateness"; a drive then gets a set-point 2 cycles ahead at
+#                             once), or alarms_followed_host_stalls
 # Names: NS, M_IF (master end), S_IF (drives' end), WORK (temporary directory).
 
 skip() { echo "SKIP: $*"; exit 77; }
@@ -100,4 +104,11 @@ alarms_followed_host_stalls() {
   local alarms
   alarms=$(grep -E "\] slave [0-9]+ @0x[0-9A-F]{4} [^:]*: alarm " "$WORK/vdrive.log")
   [ -n "$alarms" ] && ! echo "$alarms" | grep -qv "after a host stall of "
+}
+
+sine_failed_for_host() {
+  local late
+  late=$(sed -n 's/.* worst lateness \([0-9]*\) us .*/\1/p' "$1" | head -1)
+  [ -n "$late" ] && [ "$late" -ge 2000 ] && return 0
+  alarms_followed_host_stalls
 }
