@@ -38,7 +38,7 @@ TEST(SamplerLinePlace, ALaterPartNamesItsSlavesAndFaultsAsTheWholeLineDoes) {
   network::Network net{std::vector<std::string>{"a6b", "ds5c1"}, clock};
   control::FaultService faults(net, nullptr, nullptr);
   Sampler s(net, 100.0, SamplerSources{nullptr, nullptr, &faults.injector()});
-  s.set_place(LinePlace{2, 1, 2});
+  s.set_place(LinePlace{.slaves_before = 2, .part = 1, .parts = 2});
   s.set_fault_handler([&faults](const control::ControlRequest& r, Nanos now) { return faults.handle(r, now); });
   s.poll(0);
   // The part's own slave 1 (the line's slave 3), its own fault 1 (the run's fault 2).
@@ -70,7 +70,9 @@ TEST(SamplerLinePlace, ALaterPartNamesItsSlavesAndFaultsAsTheWholeLineDoes) {
       EXPECT_EQ(e.value, 2u);
       EXPECT_STREQ(e.text.data(), "fault 2 ended");
     }
-    if (e.kind == EventKind::alarm_raised) EXPECT_EQ(e.slave, 3);
+    if (e.kind == EventKind::alarm_raised) {
+      EXPECT_EQ(e.slave, 3);
+    }
   }
   EXPECT_TRUE(started);
   EXPECT_TRUE(ended);
@@ -81,7 +83,7 @@ TEST(SamplerLinePlace, PartOneRefusesAPlantChangeForAnotherPartsSlaveNamingWhy) 
   VirtualClock clock{0};
   network::Network net{std::vector<std::string>{"a6b", "ds5c1"}, clock};
   Sampler s(net, 100.0);
-  s.set_place(LinePlace{0, 0, 2, 1});
+  s.set_place(LinePlace{.slaves_before = 0, .part = 0, .parts = 2, .slaves_after = 1});
   ASSERT_TRUE(s.request(parse_telemetry_request(R"({"op":"plant_set","slave":3,"external_load":0.5})")));
   s.poll(0);
   std::optional<TelemetryReply> reply = s.reply();

@@ -82,7 +82,7 @@ public:
              const std::string& web, bool web_given)
       : network_(drives, clock_), link_(iface), impaired_(link_, wire_, network_, clock_), faults_(network_, &wire_, &impaired_),
         telemetry_(telemetry_domain ? std::make_unique<telemetry::LineTelemetry>(network_, impaired_, clock_, counters_, &faults_,
-                                                                                  telemetry::LineTelemetryOptions{100.0, *telemetry_domain}, nullptr)
+                                                                                  telemetry::LineTelemetryOptions{100.0, *telemetry_domain, {}, {}}, nullptr)
                                     : nullptr),
         page_(start_web(web, network_, clock_, counters_, &faults_, "demo", iface, nullptr, !web_given)),
         services_(telemetry_ ? &telemetry_->service() : static_cast<runtime::LoopService*>(&faults_),

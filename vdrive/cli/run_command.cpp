@@ -382,8 +382,8 @@ void run_in_parts(RunOptions o) {
       for (std::size_t i = parts[k].first; i < parts[k].first + parts[k].count; ++i) a.push_back(o.drives[i]);
       for (const std::string& plant : plants_of_part(o.plants, parts, k, o.drives.size())) a.insert(a.end(), {"--plant", plant});
     }
-    a.insert(a.end(), {"--clock-origin", std::to_string(origin), "--slaves-before", std::to_string(parts[k].first), "--run-part", std::to_string(k + 1), "--run-parts",
-                       std::to_string(parts.size())});
+    a.insert(a.end(), {"--clock-origin", std::to_string(origin), "--slaves-before", std::to_string(parts[k].first),
+                       "--run-part", std::to_string(k + 1), "--run-parts", std::to_string(parts.size())});
     // Each part publishes its own slaves' telemetry in the run's domain; part 1 takes the requests.
     if (o.telemetry.enabled)
       a.insert(a.end(), {"--telemetry", "--telemetry-rate", fmt::format("{}", o.telemetry.rate_hz), "--domain",
