@@ -11,7 +11,6 @@
 #include <cerrno>
 #include <cstring>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
@@ -125,14 +124,8 @@ std::string part_control_path(const std::string& path, std::size_t part) {
 // control socket and the telemetry's requests alike; null for a process that is the whole line.
 std::shared_ptr<control::PartRouter> part_router(const RunOptions& o, control::FaultService& service) {
   if (o.later_parts.empty()) return nullptr;
-  // FaultService::call takes one caller at a time; the socket's and the telemetry's threads take turns.
-  auto one_at_a_time = std::make_shared<std::mutex>();
   return std::make_shared<control::PartRouter>(
-      o.drives.size(), o.later_parts,
-      [&service, one_at_a_time](const control::ControlRequest& r) {
-        const std::lock_guard<std::mutex> turn(*one_at_a_time);
-        return service.call(r, 2'000'000'000);
-      },
+      o.drives.size(), o.later_parts, [&service](const control::ControlRequest& r) { return service.call(r, 2'000'000'000); },
       [](const std::string& to, std::string_view line, Nanos timeout) { return control::control_call(to, line, timeout); });
 }
 

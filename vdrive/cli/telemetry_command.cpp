@@ -328,10 +328,8 @@ std::unique_ptr<telemetry::LineTelemetry> start_run_telemetry(const RunTelemetry
   try {
     auto t = std::make_unique<telemetry::LineTelemetry>(network, served, clock, counters, faults,
                                                         telemetry::LineTelemetryOptions{o.rate_hz, domain, o.place, o.requests}, std::move(wake));
-    if (o.requests.take_requests)
-      spdlog::info("telemetry: DDS domain {}, {:g} Hz, topics rt/vdrive/{{axis_state,bus_state,events,control_request,control_reply}}", domain, o.rate_hz);
-    else
-      spdlog::info("telemetry: DDS domain {}, {:g} Hz, topics rt/vdrive/{{axis_state,bus_state,events}} (part 1 takes the requests)", domain, o.rate_hz);
+    spdlog::info("telemetry: DDS domain {}, {:g} Hz, topics rt/vdrive/{{axis_state,bus_state,events{}", domain, o.rate_hz,
+                 o.requests.take_requests ? ",control_request,control_reply}" : "} (part 1 takes the requests)");
     return t;
   } catch (const telemetry::DdsError& e) {
     throw CliError(kExitFailure, fmt::format("--telemetry: {}", e.what()));

@@ -126,6 +126,7 @@ ControlReply FaultService::handle(const ControlRequest& r, Nanos now) {
 }
 
 ControlReply FaultService::call(ControlRequest request, Nanos timeout) {
+  const std::lock_guard<std::mutex> turn(callers_);
   const std::uint64_t seq = next_seq_++;
   request.seq = seq;
   if (!requests_.try_push(std::move(request)))

@@ -10,6 +10,7 @@
 // After every change the ImpairedLink (if any) re-reads the wire settings, so a clean wire
 // costs the frame path one branch.
 #include <cstdint>
+#include <mutex>
 #include <algorithm>
 #include <functional>
 #include <string>
@@ -38,8 +39,9 @@ public:
   // Carries out one request now (poll() does this for each queued one).
   ControlReply handle(const ControlRequest& request, Nanos now);
 
-  // Any one other thread at a time: queues `request` for the loop and waits up to `timeout`
-  // for its reply; a `failed` reply if the loop is busy or does not answer in time.
+  // Any thread but the loop's (the control socket's, the telemetry's): queues `request` for the
+  // loop and waits up to `timeout` for its reply; a `failed` reply if the loop is busy or does not
+  // answer in time. Callers take turns (the queues have one producer and one consumer each).
   ControlReply call(ControlRequest request, Nanos timeout);
 
   const fault::FaultInjector& injector() const { return injector_; }
@@ -71,6 +73,7 @@ private:
   runtime::SpscQueue<ControlReply, 4> replies_;
   int reply_event_ = -1;  // eventfd: the loop signals a reply
   std::function<void()> wake_;
+  std::mutex callers_;             // call(): one caller at a time, never the loop
   std::uint64_t next_seq_ = 1;
   std::vector<Armed> armed_;      // sorted by `at`
   std::size_t armed_done_ = 0;    // armed_[0, armed_done_) injected
