@@ -403,13 +403,14 @@ Nanos DcUnit::next_deadline() const {
   if ((act & kSync0Enable) || first_pulse_pending_) target = std::min(target, next_sync0_);
   if (act & kSync1Enable) target = std::min(target, next_sync1_);
   if (target == kNever) return INT64_MAX;
-  // Asked several times per wake-up of the loop at one `now`; the answer depends only on `now`
-  // and the unit's state, so it is reused while neither changed (exact, not an approximation).
+  // Asked for every slave in every round of the loop. At host rate (no drift, no correction)
+  // system time is host time plus a constant, so the answer is one fixed instant whenever it is
+  // asked, before the edge or after it (global_time_of's two paths give the same number): it
+  // holds until the unit changes, without reading the clock. Otherwise the answer depends on
+  // `now` and the unit's state, and is reused while neither changed. Exact, not an approximation.
+  if (deadline_holds_ && version_ == deadline_version_) return deadline_;
   const Nanos now = clock_.now();
-  // global_time_of's host-rate answer does not depend on when it is asked, so it also holds at a
-  // later `now`, until it is due.
-  const bool same_answer = now == deadline_asked_at_ || (deadline_holds_ && deadline_ > now);
-  if (version_ != deadline_version_ || !same_answer) {
+  if (version_ != deadline_version_ || now != deadline_asked_at_) {
     deadline_ = global_time_of(target);
     deadline_asked_at_ = now;
     deadline_version_ = version_;

@@ -144,7 +144,7 @@ private:
   mutable Nanos deadline_asked_at_ = INT64_MIN;  // next_deadline()'s last answer, for `now` and version_
   mutable std::uint64_t deadline_version_ = 0;
   mutable Nanos deadline_ = 0;
-  mutable bool deadline_holds_ = false;  // deadline_ is a host-rate answer: valid until due
+  mutable bool deadline_holds_ = false;  // deadline_ is a host-rate answer: valid until version_ moves
 };
 
 }  // namespace vdrive::esc
