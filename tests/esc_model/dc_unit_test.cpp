@@ -324,6 +324,34 @@ TEST(DcUnit, HostRateDeadlineIsTheFirstInstantAtTheEdge) {
   EXPECT_LT(dc.system_time(d - 1), edge);
 }
 
+// A loop that gets to the edge late still asks for the deadline first: at host rate the answer is
+// the edge's own instant, the same as a unit asked for the first time at that late moment gives.
+TEST(DcUnit, HostRateDeadlineHoldsPastTheEdgeUntilTheUnitChanges) {
+  auto program = [](DcUnit& dc, const VirtualClock& clock) {
+    dc.set_start_offset(40'000'000'123);
+    dc.load_pulse_length(0);
+    wr(dc, 0x0920, 987'654'321, 8, clock.now());
+    wr(dc, 0x09A0, 125'000u, 4, clock.now());
+    wr(dc, 0x0990, dc.system_time(clock.now()) + 300'017, 8, clock.now());
+    wr(dc, 0x0981, 0x03u, 1, clock.now());
+  };
+  VirtualClock clock{5'000'000};
+  DcUnit dc{clock};
+  program(dc, clock);
+  const Nanos d = dc.next_deadline();
+  for (const Nanos late : {Nanos{1}, Nanos{124'999}, Nanos{3'000'000}}) {
+    clock.set(d + late);
+    ASSERT_EQ(dc.next_deadline(), d) << late;
+    VirtualClock fresh_clock{5'000'000};
+    DcUnit fresh{fresh_clock};
+    program(fresh, fresh_clock);
+    fresh_clock.set(d + late);
+    ASSERT_EQ(fresh.next_deadline(), d) << late;  // computed on the late path, not kept
+  }
+  ASSERT_TRUE(dc.tick(clock.now()).sync0);
+  EXPECT_GT(dc.next_deadline(), d);  // the unit changed: the next edge
+}
+
 TEST_F(SyncFixture, AcknowledgeModeStatusClearsOnRead) {
   program(dc.system_time(clock.now()) + 1'000, 500'000, 0, 0x03);
   step();
