@@ -3,7 +3,8 @@
 
 Usage: stalls_in_op.py LOG PARTS
 Prints one entry per part, in part order, joined by '/': "none", or "K, longest X ms".
-Exit 0 when no part stalled in Op, 1 when one did, 2 when the log never reached Op.
+Exit 0 when no part stalled in Op, 1 when one did, 2 when the log never reached Op, cannot be
+read, or the arguments are wrong (then a line on stderr says which).
 
 A stall is counted when its log line ("host stall X ms ..." or "K more host stalls ...") comes
 later than the last "-> Op" line of the log by more than two of the status thread's 125 ms
@@ -26,12 +27,16 @@ def main(argv):
         return 2
     parts = int(argv[2])
     entries = []
-    with open(argv[1], encoding="utf-8", errors="replace") as log:
-        for line in log:
-            m = LINE.match(line.rstrip("\n"))
-            if m:
-                when = datetime.strptime(m.group(1), "%Y-%m-%d %H:%M:%S.%f").timestamp()
-                entries.append((when, int(m.group(3) or 1), m.group(4)))
+    try:
+        with open(argv[1], encoding="utf-8", errors="replace") as log:
+            for line in log:
+                m = LINE.match(line.rstrip("\n"))
+                if m:
+                    when = datetime.strptime(m.group(1), "%Y-%m-%d %H:%M:%S.%f").timestamp()
+                    entries.append((when, int(m.group(3) or 1), m.group(4)))
+    except OSError as e:
+        print(f"stalls_in_op.py: cannot read {argv[1]}: {e.strerror}", file=sys.stderr)
+        return 2
     in_op = [when for when, _, text in entries if text.endswith("-> Op")]
     if not in_op:
         print("the line never reached Op")

@@ -46,6 +46,12 @@ class StallsInOp(unittest.TestCase):
     def test_bad_arguments_are_refused(self):
         self.assertEqual(run(LOG, 0)[0], 2)
 
+    def test_a_log_that_cannot_be_read_is_named(self):
+        r = subprocess.run([sys.executable, SCRIPT, "/nonexistent/vdrive.log", "1"], capture_output=True, text=True)
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(r.stderr.strip(), "stalls_in_op.py: cannot read /nonexistent/vdrive.log: No such file or directory")
+        self.assertNotIn("Traceback", r.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()
