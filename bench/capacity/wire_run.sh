@@ -29,8 +29,8 @@
 # Usage: bash bench/capacity/wire_run.sh [BUILD_DIR]      (root)
 # Environment: PROCESSES (default "1 2"), RTCYCLES (10000), START (32), MAXN (512), CYCLE_US (1000),
 #              REPLY_TIMEOUT_US (20000), CRITERION (on-time), MAX_CPU (85), RETRY (1),
-#              VDRIVE_OPTS (extra `vdrive run` options), KEEP (a directory: the last run's
-#              vdrive.log and op.txt are copied there).
+#              VDRIVE_OPTS (extra `vdrive run` options), KEEP (a directory, made if need be: the
+#              last run's vdrive.log and op.txt are copied into it).
 set -u
 BUILD=$(cd "${1:-build}" && pwd) || exit 1
 VDRIVE="$BUILD/vdrive/vdrive"
@@ -55,7 +55,7 @@ NS="vdcap-$$"; M_IF="vdcm$$"; S_IF="vdcs$$"; PID=""
 WORK=$(mktemp -d)
 cleanup() {
   [ -n "$PID" ] && kill "$PID" 2>/dev/null && wait "$PID" 2>/dev/null
-  ip link del "$M_IF" 2>/dev/null; ip netns del "$NS" 2>/dev/null; [ -n "${KEEP:-}" ] && cp -r "$WORK" "$KEEP"; rm -rf "$WORK"
+  ip link del "$M_IF" 2>/dev/null; ip netns del "$NS" 2>/dev/null; [ -n "${KEEP:-}" ] && mkdir -p "$KEEP" && cp "$WORK"/* "$KEEP"/; rm -rf "$WORK"
 }
 trap cleanup EXIT
 trap 'exit 1' INT TERM
