@@ -109,6 +109,19 @@ TEST(NetworkFilePart, AFaultByStationAddressHasNoPart) {
       << e;
 }
 
+TEST(NetworkFilePart, ASlaveNamedByANumberIsServedInOneProcess) {
+  const std::string line = "slaves:\n  - {device: a6b}\n  - {name: '7', device: ds5c1}\n  - {name: '0x10', device: ds1000a}\n";
+  EXPECT_EQ(cut_error(line, 1), "") << "one process reads its name first";
+  const std::string e = cut_error(line, 2);
+  EXPECT_NE(e.find("n.yaml:3: slave 2 is named '7', a number: over --processes a number in a signal point is a whole-line "
+                   "position"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(cut_error("slaves:\n  - {device: a6b}\n  - {name: '0x10', device: ds1000a}\n", 2).find("named '0x10'"),
+            std::string::npos);
+  EXPECT_EQ(cut_error("slaves:\n  - {name: x7, device: a6b}\n  - {name: 7b, device: ds5c1}\n", 2), "");
+}
+
 TEST(NetworkFilePart, TheFileSaysHowManyProcesses) {
   EXPECT_EQ(parse(kLine + "processes: 2\n").processes, 2u);
   EXPECT_EQ(parse(kLine).processes, 0u) << "not given";

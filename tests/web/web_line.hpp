@@ -23,9 +23,11 @@ namespace vdrive::web::test {
 
 class WebLine {
 public:
-  explicit WebLine(std::string host = "127.0.0.1", std::vector<std::string> drives = {"a6b", "ds5c1", "ds1000a"})
+  // `base`: the server's other options (a part of a line over processes).
+  explicit WebLine(std::string host = "127.0.0.1", std::vector<std::string> drives = {"a6b", "ds5c1", "ds1000a"},
+                   WebServerOptions base = {})
       : network_(drives, clock_), faults_(network_, nullptr, nullptr) {
-    WebServerOptions o;
+    WebServerOptions o = std::move(base);
     o.address.host = std::move(host);
     o.address.port = 0;
     o.source = "test";

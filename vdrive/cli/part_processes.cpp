@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <climits>
 #include <cstring>
 
@@ -55,10 +56,20 @@ std::unique_ptr<link::NetnsScope> inside(const std::string& netns) {
 PartProcesses::PartProcesses(const std::vector<network::LinePart>& parts, const std::string& veth_prefix,
                              const std::string& netns, const ArgsOf& child_args)
     : parts_(parts), netns_(netns), children_(std::make_unique<Child[]>(parts.size())) {
-  const std::unique_ptr<link::NetnsScope> here = inside(netns_);
+  {
+    const std::unique_ptr<link::NetnsScope> here = inside(netns_);
+    try {
+      for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+        veths_.push_back(std::make_unique<VethPair>(veth_prefix + std::to_string(k + 1) + "o", veth_prefix + std::to_string(k + 1) + "i"));
+    } catch (...) {
+      veths_.clear();  // inside the namespace still
+      throw;
+    }
+  }
+  // The children start here, outside the namespace: they open their interfaces in it themselves
+  // (--netns in their arguments), and their control sockets, telemetry and pages stay where the
+  // user is, as part 1's do.
   try {
-    for (std::size_t k = 0; k + 1 < parts.size(); ++k)
-      veths_.push_back(std::make_unique<VethPair>(veth_prefix + std::to_string(k + 1) + "o", veth_prefix + std::to_string(k + 1) + "i"));
     for (std::size_t k = 1; k < parts.size(); ++k) {
       const std::string& in = veths_[k - 1]->slave_end();
       const std::string next = k < veths_.size() ? veths_[k]->master_end() : std::string{};
@@ -66,7 +77,12 @@ PartProcesses::PartProcesses(const std::vector<network::LinePart>& parts, const 
     }
   } catch (...) {
     stop_children();
-    veths_.clear();  // inside the namespace still
+    try {
+      const std::unique_ptr<link::NetnsScope> here = inside(netns_);
+      veths_.clear();
+    } catch (const CliError& e) {
+      spdlog::warn("{}: the veth pairs of --processes stay", e.what());
+    }
     throw;
   }
   watcher_ = std::thread([this] { watch(); });
@@ -122,10 +138,13 @@ void PartProcesses::start(std::size_t part, const std::vector<std::string>& args
   children_[part].pid = pid;
   pollfd fd{ready[0], POLLIN, 0};
   const int r = ::poll(&fd, 1, static_cast<int>(std::chrono::milliseconds(kStartTimeout).count()));
-  char byte = 0;
-  const bool served = r == 1 && ::read(ready[0], &byte, 1) == 1;
+  // 'R', then the port of its page when it serves one (one write, so one read takes it whole).
+  char said[32] = {};
+  const ssize_t n = r == 1 ? ::read(ready[0], said, sizeof said - 1) : -1;
+  const bool served = n >= 1 && said[0] == 'R';
   ::close(ready[0]);
   if (served) {
+    children_[part].web_port = std::atoi(said + 1);
     spdlog::info("{} serves on {} (pid {})", name(part), args.size() > 2 ? args[2] : "?", pid);
     return;
   }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <optional>
@@ -53,6 +54,9 @@
 namespace vdrive::cli {
 namespace {
 
+// How part 1 of --processes gives the later parts the token their pages ask of a change.
+constexpr const char* kPartWebTokenVariable = "VDRIVE_PART_WEB_TOKEN";
+
 struct RunOptions {
   std::string iface;
   std::string tap;
@@ -69,6 +73,9 @@ struct RunOptions {
   std::size_t run_parts = 1;
   Nanos clock_origin = 0;           // --clock-origin: a part of --processes times from part 1's epoch (0: its own)
   std::vector<control::RemotePart> later_parts;  // --processes, part 1: their control sockets
+  bool part_page = false;                        // --part-page: a later part's page, on a loopback port of its own
+  std::vector<web::PartPage> later_pages;        // --processes with --web, part 1: their pages
+  std::string later_pages_token;                 // what their pages ask of a change
   std::vector<std::string> drives;
   std::string network_file;         // --network: the slaves, topology, aliases and wires of a network file
   std::string eni;                  // --eni: the network a master's ENI describes
@@ -375,6 +382,9 @@ void run_in_parts(RunOptions o) {
       for (std::size_t i = parts[k].first; i < parts[k].first + parts[k].count; ++i) a.push_back(o.drives[i]);
       for (const std::string& plant : plants_of_part(o.plants, parts, k, o.drives.size())) a.insert(a.end(), {"--plant", plant});
     }
+    if (!o.netns.empty()) a.insert(a.end(), {"--netns", o.netns});
+    // Its own page on a loopback port it picks, which part 1's page reads and forwards to.
+    if (!o.web.empty()) a.push_back("--part-page");
     a.insert(a.end(), {"--clock-origin", std::to_string(origin), "--slaves-before", std::to_string(parts[k].first),
                        "--run-part", std::to_string(k + 1), "--run-parts", std::to_string(parts.size())});
     // Each part publishes its own slaves' telemetry in the run's domain; part 1 takes the requests.
@@ -405,7 +415,12 @@ void run_in_parts(RunOptions o) {
       for (std::size_t k = 1; k < paths.size(); ++k) control::remove_if_stale(paths[k]);
     }
   } part_sockets{sockets};
+  // The parts' pages take changes from part 1's page alone: the token reaches them in their
+  // environment (not their command line, which every user can read).
+  const std::string page_token = o.web.empty() ? std::string{} : web::new_token();
+  if (!page_token.empty()) ::setenv(kPartWebTokenVariable, page_token.c_str(), 1);
   PartProcesses others(parts, fmt::format("vd{}p", ::getpid() % 100000), o.netns, child_args);
+  ::unsetenv(kPartWebTokenVariable);
   RunOptions first = o;
   first.processes = 1;
   first.drives.assign(o.drives.begin(), o.drives.begin() + static_cast<long>(parts[0].count));
@@ -414,6 +429,10 @@ void run_in_parts(RunOptions o) {
   first.next_iface = others.first_onward();
   first.later_slaves = o.drives.size() - parts[0].count;
   for (std::size_t k = 1; k < sockets.size(); ++k) first.later_parts.push_back({parts[k].first, parts[k].count, sockets[k]});
+  if (!o.web.empty()) {
+    for (std::size_t k = 1; k < parts.size(); ++k) first.later_pages.push_back({parts[k].first, parts[k].count, others.web_port(k)});
+    first.later_pages_token = page_token;
+  }
   first.cpu = cpu_of(0);
   first.run_parts = parts.size();
   first.clock_origin = origin;
@@ -497,15 +516,7 @@ void run(RunOptions o) {
     onward_link = open_onward(o, *network);
   }
 
-  if (o.rt_priority != 0) {
-    const runtime::RealtimeResult rt = runtime::enter_realtime(o.rt_priority);
-    if (rt.error != 0) {
-      const bool denied = rt.error == EPERM || rt.error == EACCES;
-      throw CliError(denied ? kExitNotPermitted : kExitFailure,
-                     fmt::format("--rt-priority: {} failed: {}{}", rt.failed, std::strerror(rt.error),
-                                 denied ? " (needs root or CAP_SYS_NICE and CAP_IPC_LOCK)" : ""));
-    }
-  }
+
 
   // Runtime fault control: a bad-cable stage around the link (one branch while clean) and the
   // control socket, whose requests the loop picks up between frames.
@@ -546,10 +557,45 @@ void run(RunOptions o) {
     o.telemetry.requests.route = [router](const control::ControlRequest& r, std::string_view line) { return router->route(r, line); };
   const std::unique_ptr<telemetry::LineTelemetry> telemetry =
       start_run_telemetry(o.telemetry, *network, impaired, clock, counters, &faults, [&waker] { waker.wake(); });
-  const std::unique_ptr<web::WebServer> page =
-      start_web(o.web, *network, clock, counters, &faults, "run", o.tap.empty() ? o.iface : o.tap, [&waker] { waker.wake(); });
-  // Pinned last, so the threads started above (control, telemetry) stay off the serving CPU;
-  // likewise the slice is the serving thread's alone.
+  web::WebServerOptions page_options;
+  if (o.run_parts > 1) {
+    page_options.origin = 0;  // the run's clock epoch, shared by its parts
+    page_options.run_part = o.run_part - 1;
+    page_options.run_parts = o.run_parts;
+    page_options.parts = o.later_pages;
+    page_options.parts_token = o.later_pages_token;
+    if (router)
+      page_options.route = [router](const control::ControlRequest& r, std::string_view line) { return router->route(r, line); };
+    if (o.run_part > 1) {
+      if (const char* token = std::getenv(kPartWebTokenVariable); token != nullptr) page_options.token = token;
+      ::unsetenv(kPartWebTokenVariable);
+    }
+  }
+  const std::string served = o.tap.empty() ? o.iface : o.tap;
+  std::unique_ptr<web::WebServer> page;
+  if (o.part_page) {
+    page_options.address = {"127.0.0.1", 0};
+    page = serve_web(page_options, *network, clock, counters, &faults, "run", served, [&waker] { waker.wake(); });
+  } else {
+    page = start_web(o.web, *network, clock, counters, &faults, "run", served, [&waker] { waker.wake(); }, false, &page_options);
+  }
+  // The fault control is polled with the telemetry's sampler when there is one; the page's
+  // requests need it polled too. The status line's thread starts here.
+  runtime::LoopService* base = telemetry ? &telemetry->service()
+                               : control || faults.has_armed() || page ? static_cast<runtime::LoopService*>(&faults) : nullptr;
+  telemetry::LoopServices with_page(base, page ? &page->service() : nullptr);
+  runtime::LoopService* const services = status.wrap(page ? &with_page : base);
+  // Real time, pinned and sliced last: the threads started above (control, telemetry, the page,
+  // the status line) inherit none of it, so they neither run at the loop's priority nor share its CPU.
+  if (o.rt_priority != 0) {
+    const runtime::RealtimeResult rt = runtime::enter_realtime(o.rt_priority);
+    if (rt.error != 0) {
+      const bool denied = rt.error == EPERM || rt.error == EACCES;
+      throw CliError(denied ? kExitNotPermitted : kExitFailure,
+                     fmt::format("--rt-priority: {} failed: {}{}", rt.failed, std::strerror(rt.error),
+                                 denied ? " (needs root or CAP_SYS_NICE and CAP_IPC_LOCK)" : ""));
+    }
+  }
   if (o.cpu >= 0) {
     if (const int err = runtime::pin_to_cpu(o.cpu); err != 0)
       throw CliError(kExitBadArguments, fmt::format("--cpu {}: {} (no such CPU, or not one this process may use)", o.cpu,
@@ -557,22 +603,16 @@ void run(RunOptions o) {
   }
   apply_time_slice(o);
   if (o.ready_fd >= 0) {  // the parent of --processes waits for this before it serves
-    const char ready = 'R';
-    if (::write(o.ready_fd, &ready, 1) != 1) spdlog::warn("--ready-fd {}: {}", o.ready_fd, std::strerror(errno));
+    const std::string ready = page ? fmt::format("R{}", page->port()) : "R";
+    if (::write(o.ready_fd, ready.data(), ready.size()) != static_cast<ssize_t>(ready.size()))
+      spdlog::warn("--ready-fd {}: {}", o.ready_fd, std::strerror(errno));
     ::close(o.ready_fd);
   }
   try {
-    // The fault control is polled with the telemetry's sampler when there is one; the page's
-    // requests need it polled too.
-    runtime::LoopService* base = telemetry ? &telemetry->service()
-                                 : control || faults.has_armed() || page ? static_cast<runtime::LoopService*>(&faults) : nullptr;
-    telemetry::LoopServices with_page(base, page ? &page->service() : nullptr);
-    runtime::LoopService* services = page ? &with_page : base;
     link::Link& to_master = telemetry ? telemetry->link() : static_cast<link::Link&>(impaired);
     std::optional<runtime::OnwardLink> onward;
     if (onward_link) onward.emplace(to_master, *onward_link, *network, clock, counters);
-    runtime::serve(*network, onward ? static_cast<link::Link&>(*onward) : to_master, clock, stop, counters,
-                   status.wrap(services));
+    runtime::serve(*network, onward ? static_cast<link::Link&>(*onward) : to_master, clock, stop, counters, services);
   } catch (const link::LinkError& e) {  // the interface was removed while serving
     throw CliError(exit_code_for(e.kind()), e.what());
   }
@@ -617,6 +657,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--run-part", o->run_part, "")->group("")->check(CLI::Range(1, 64));    // a part of --processes: its
   cmd->add_option("--run-parts", o->run_parts, "")->group("")->check(CLI::Range(1, 64));  // telemetry's fault ids
   cmd->add_option("--clock-origin", o->clock_origin, "")->group("");  // a part of --processes: one time base for telemetry
+  cmd->add_flag("--part-page", o->part_page, "")->group("");  // a part of --processes: its page, which part 1's reads
   cmd->add_option("--next-iface", o->next_iface,
                   "The line goes on through interface NAME: out of the last slave's port 1 to whatever is cabled "
                   "there (another vdrive, real slaves) and back (docs/scale-out.md)");

@@ -29,14 +29,22 @@ CLI::Option* add_web_option(CLI::App* cmd, std::string& web) {
 std::unique_ptr<web::WebServer> start_web(const std::string& spec, network::Network& network, const Clock& clock,
                                           const runtime::LoopCounters& counters, control::FaultService* faults,
                                           const std::string& source, const std::string& interface, std::function<void()> wake,
-                                          bool best_effort) {
+                                          bool best_effort, const web::WebServerOptions* base) {
   if (spec.empty()) return nullptr;
   web::WebServerOptions o;
+  if (base != nullptr) o = *base;
   try {
     o.address = web::parse_web_address(spec);
   } catch (const std::invalid_argument& e) {
     throw CliError(kExitBadArguments, fmt::format("--web {}", e.what()));
   }
+  return serve_web(std::move(o), network, clock, counters, faults, source, interface, std::move(wake), best_effort);
+}
+
+std::unique_ptr<web::WebServer> serve_web(web::WebServerOptions o, network::Network& network, const Clock& clock,
+                                          const runtime::LoopCounters& counters, control::FaultService* faults,
+                                          const std::string& source, const std::string& interface, std::function<void()> wake,
+                                          bool best_effort) {
   o.source = source;
   o.interface = interface;
   o.version = VDRIVE_VERSION;
@@ -48,7 +56,11 @@ std::unique_ptr<web::WebServer> start_web(const std::string& spec, network::Netw
     spdlog::warn("no web page: {}", e.what());
     return nullptr;
   }
-  spdlog::info("web page on {}", server->url());
+  // A later part's page: part 1's page reads it; its token stays out of the log.
+  if (!o.token.empty())
+    spdlog::info("web page on http://{}:{}/ (part 1's page reads it; changes need the run's token)", o.address.host, server->port());
+  else
+    spdlog::info("web page on {}", server->url());
   if (!o.address.loopback())
     spdlog::warn("the web page is served to other machines on {}: changes need the token in that address; "
                  "an SSH tunnel to 127.0.0.1 is the safer way (docs/web.md)", o.address.host);

@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "common/number_text.hpp"
+
 namespace vdrive::machine {
 namespace {
 
@@ -37,6 +39,15 @@ void check_cut(const NetworkFile& file, std::span<const network::LinePart> parts
     throw NetworkFileError(fmt::format("{}:{}: slave {} ({}) is cabled to {}: the slaves form a tree; --processes "
                                        "cuts a line, so a tree is served in one process",
                                        file.file, file.slaves[*i].line, *i + 1, file.slaves[*i].name, on));
+  }
+  // In one process a slave's name wins over a position in a signal point ("3.home"); part 1's
+  // router reads a number as a whole-line position, and a later part would read it as one of its own.
+  for (std::size_t i = 0; i < file.slaves.size(); ++i) {
+    if (parse_unsigned(file.slaves[i].name))
+      throw NetworkFileError(fmt::format("{}:{}: slave {} is named '{}', a number: over --processes a number in a signal "
+                                         "point is a whole-line position, so the name would not reach it; give it a "
+                                         "name that is not a number",
+                                         file.file, file.slaves[i].line, i + 1, file.slaves[i].name));
   }
   for (const network::SignalWire& w : file.wires) {
     const std::size_t from = network::part_of(parts, w.from.slave), to = network::part_of(parts, w.to.slave);
@@ -82,3 +93,4 @@ NetworkFile line_part(const NetworkFile& file, network::LinePart p) {
 }
 
 }  // namespace vdrive::machine
+#include "common/number_text.hpp"

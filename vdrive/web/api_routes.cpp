@@ -77,6 +77,16 @@ std::variant<std::uint64_t, ApiResult> slave_param(const httplib::Request& req, 
   }
 }
 
+// A request about slave index `i` that a later part of the run serves goes on to that part
+// (PartPages), with `rest` after "/api/v1/slaves/POS" and the request's query; true when it did.
+bool forwarded(const WebContext& c, std::size_t i, const httplib::Request& req, httplib::Response& res, const std::string& rest) {
+  if (c.record.served_here(i) || c.parts == nullptr) return false;
+  std::string path = rest;
+  if (!req.params.empty()) path.append("?").append(httplib::detail::params_to_query_str(req.params));
+  send(res, c.parts->call_for_slave(i, req.method, path, req.body));
+  return true;
+}
+
 json fault_status_json(const control::FaultStatus& f) {
   return {{"id", f.id}, {"kind", f.kind}, {"description", f.description}, {"elapsed_ns", f.elapsed}, {"remaining_ns", f.remaining}};
 }
@@ -131,6 +141,7 @@ void add_alarm_routes(httplib::Server& s, WebContext& c) {
   s.Get(R"(/api/v1/slaves/([^/]+)/alarms)", [&c](const httplib::Request& req, httplib::Response& res) {
     const auto slave = slave_of(c, req.matches[1]);
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
+    if (forwarded(c, std::get<std::size_t>(slave), req, res, "/alarms")) return;
     json alarms = json::array();
     const profile::ProductProfile* p = c.record.slave(std::get<std::size_t>(slave)).profile;
     for (const profile::AlarmSpec& a : p->alarms)
@@ -144,6 +155,7 @@ void add_object_routes(httplib::Server& s, WebContext& c) {
   s.Get(R"(/api/v1/slaves/([^/]+)/objects)", [&c](const httplib::Request& req, httplib::Response& res) {
     const auto slave = slave_of(c, req.matches[1]);
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
+    if (forwarded(c, std::get<std::size_t>(slave), req, res, "/objects")) return;
     const std::string q = req.has_param("q") ? req.get_param_value("q") : "";
     send(res, {200, list_entries(*c.dictionaries[std::get<std::size_t>(slave)], q)});
   });
@@ -161,6 +173,7 @@ void add_object_routes(httplib::Server& s, WebContext& c) {
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
     const auto at = address(req);
     if (const auto* e = std::get_if<ApiResult>(&at)) return send(res, *e);
+    if (forwarded(c, std::get<std::size_t>(slave), req, res, fmt::format("/objects/{}/{}", std::string(req.matches[2]), std::string(req.matches[3])))) return;
     // Plain copies: a lambda may not capture structured bindings before C++20 compilers caught up
     // (clang 14, the fuzz build's).
     const std::uint16_t index = std::get<0>(at).first;
@@ -174,6 +187,7 @@ void add_object_routes(httplib::Server& s, WebContext& c) {
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
     const auto at = address(req);
     if (const auto* e = std::get_if<ApiResult>(&at)) return send(res, *e);
+    if (forwarded(c, std::get<std::size_t>(slave), req, res, fmt::format("/objects/{}/{}", std::string(req.matches[2]), std::string(req.matches[3])))) return;
     const std::uint16_t index = std::get<0>(at).first;  // plain copies, as above
     const std::uint8_t sub = std::get<0>(at).second;
     const std::size_t i = std::get<std::size_t>(slave);
@@ -225,7 +239,7 @@ void add_fault_routes(httplib::Server& s, WebContext& c) {
   s.Get("/api/v1/faults", [&c](const httplib::Request&, httplib::Response& res) {
     control::ControlRequest r;
     r.op = control::ControlRequest::Op::list;
-    const control::ControlReply reply = c.fault_call(r);
+    const control::ControlReply reply = c.fault_call(r, R"({"op":"list"})");
     json faults = json::array();
     for (const control::FaultStatus& f : reply.faults) faults.push_back(fault_status_json(f));
     json scheduled = json::array();
@@ -249,22 +263,23 @@ void add_fault_routes(httplib::Server& s, WebContext& c) {
       after = parse_time(a.get<std::string>());
     }
     control::ControlRequest r;
+    const std::string line = json{{"op", "inject"}, {"fault", fault}}.dump();
     try {
-      r = control::parse_request(json{{"op", "inject"}, {"fault", fault}}.dump());
+      r = control::parse_request(line);
     } catch (const control::ProtocolError& e) {
       return send(res, api_error(400, e.what()));
     }
     if (r.fault.slave > static_cast<int>(c.record.size()))
       return send(res, api_error(400, fmt::format("fault field \"slave\": no slave {} (the line has slaves 1 to {})", r.fault.slave, c.record.size())));
     if (after && *after > 0) {
-      if (c.faults == nullptr) return send(res, api_error(503, "this vdrive takes no fault requests"));
+      if (c.faults == nullptr && !c.route) return send(res, api_error(503, "this vdrive takes no fault requests"));
       const std::lock_guard<std::mutex> lock(c.scheduled_mutex);
       if (c.scheduled.size() >= 64) return send(res, api_error(429, "64 faults are already scheduled; wait or clear them"));
       const int ticket = c.next_ticket++;
-      c.scheduled.push_back({ticket, c.clock.now() + *after, r, fault});
+      c.scheduled.push_back({ticket, c.clock.now() + *after, r, line, fault});
       return send(res, {202, {{"scheduled", ticket}}});
     }
-    const control::ControlReply reply = c.fault_call(r);
+    const control::ControlReply reply = c.fault_call(r, line);
     send(res, reply_result(reply, 201, {{"id", reply.id}}));
   });
   s.Delete(R"(/api/v1/faults/([^/]+))", [&c](const httplib::Request& req, httplib::Response& res) {
@@ -273,7 +288,7 @@ void add_fault_routes(httplib::Server& s, WebContext& c) {
     control::ControlRequest r;
     r.op = control::ControlRequest::Op::clear;
     r.id = static_cast<int>(*id);
-    const control::ControlReply reply = c.fault_call(r);
+    const control::ControlReply reply = c.fault_call(r, json{{"op", "clear"}, {"id", r.id}}.dump());
     if (reply.status == control::ControlReply::Status::bad_request) return send(res, api_error(404, reply.error));
     send(res, reply_result(reply, 200, {{"cleared", 1}}));
   });
@@ -286,7 +301,7 @@ void add_fault_routes(httplib::Server& s, WebContext& c) {
     }
     control::ControlRequest r;
     r.op = control::ControlRequest::Op::clear_all;
-    const control::ControlReply reply = c.fault_call(r);
+    const control::ControlReply reply = c.fault_call(r, R"({"op":"clear_all"})");
     send(res, reply_result(reply, 200, {{"cleared", reply.cleared}, {"unscheduled", dropped}}));
   });
 }
@@ -295,6 +310,7 @@ void add_plant_and_signal_routes(httplib::Server& s, WebContext& c) {
   s.Post(R"(/api/v1/slaves/([^/]+)/plant)", [&c](const httplib::Request& req, httplib::Response& res) {
     const auto slave = slave_of(c, req.matches[1]);
     if (const auto* e = std::get_if<ApiResult>(&slave)) return send(res, *e);
+    if (forwarded(c, std::get<std::size_t>(slave), req, res, "/plant")) return;
     const auto body = body_of(req);
     if (const auto* e = std::get_if<ApiResult>(&body)) return send(res, *e);
     const json& j = std::get<json>(body);
@@ -337,7 +353,9 @@ void add_plant_and_signal_routes(httplib::Server& s, WebContext& c) {
     }
     send(res, result);
   });
-  const auto signal_call = [&c](const control::ControlRequest& r) {
+  // Every part's signals through the run's router; else this process's, on the loop thread.
+  const auto signal_call = [&c](const control::ControlRequest& r, std::string_view line) {
+    if (c.route) return c.route(r, line);
     control::ControlReply reply = control::error_reply(control::ControlReply::Status::failed, "the line's event loop did not answer in time");
     c.calls.run([&](Nanos) { reply = control::handle_signal_request(c.network, r); }, kLoopTimeout);
     return reply;
@@ -345,7 +363,7 @@ void add_plant_and_signal_routes(httplib::Server& s, WebContext& c) {
   s.Get("/api/v1/signals", [signal_call](const httplib::Request&, httplib::Response& res) {
     control::ControlRequest r;
     r.op = control::ControlRequest::Op::signals;
-    const control::ControlReply reply = signal_call(r);
+    const control::ControlReply reply = signal_call(r, R"({"op":"signals"})");
     send(res, reply_result(reply, 200, signals_json(reply)));
   });
   s.Put(R"(/api/v1/signals/(.+))", [signal_call](const httplib::Request& req, httplib::Response& res) {
@@ -354,19 +372,21 @@ void add_plant_and_signal_routes(httplib::Server& s, WebContext& c) {
     const json& j = std::get<json>(body);
     if (!j.is_object() || !j.contains("value") || j.size() != 1) return send(res, api_error(400, "the body must be {\"value\": N}"));
     control::ControlRequest r;
+    const std::string line = json{{"op", "signal_set"}, {"signal", std::string(req.matches[1])}, {"value", j.at("value")}}.dump();
     try {
-      r = control::parse_request(json{{"op", "signal_set"}, {"signal", std::string(req.matches[1])}, {"value", j.at("value")}}.dump());
+      r = control::parse_request(line);
     } catch (const control::ProtocolError& e) {
       return send(res, api_error(400, e.what()));
     }
-    const control::ControlReply reply = signal_call(r);
+    const control::ControlReply reply = signal_call(r, line);
     send(res, reply_result(reply, 200, signals_json(reply)));
   });
 }
 
 }  // namespace
 
-control::ControlReply WebContext::fault_call(const control::ControlRequest& request) {
+control::ControlReply WebContext::fault_call(const control::ControlRequest& request, std::string_view line) {
+  if (route) return route(request, line);
   if (faults == nullptr) return control::error_reply(control::ControlReply::Status::failed, "this vdrive takes no fault requests");
   control::ControlReply reply = control::error_reply(control::ControlReply::Status::failed, "the line's event loop did not answer in time");
   calls.run([&](Nanos now) { reply = faults->handle(request, now); }, kLoopTimeout);

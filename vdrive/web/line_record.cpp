@@ -36,9 +36,9 @@ std::string csv(const std::string& s) {
 
 }  // namespace
 
-LineRecord::LineRecord(std::vector<SlaveInfo> slaves, LineIdentity identity, Nanos origin)
+LineRecord::LineRecord(std::vector<SlaveInfo> slaves, LineIdentity identity, Nanos origin, std::size_t later_slaves)
     : slaves_(std::move(slaves)), identity_(std::move(identity)), origin_(origin), axes_(slaves_.size()),
-      registers_(slaves_.size()) {}
+      registers_(slaves_.size()), later_(later_slaves) {}
 
 std::string LineRecord::alarm_text(std::size_t i, std::uint16_t error_code) const {
   // Several alarms can show one 603Fh value (A6B 27.1, 27.4, 27.6, 27.7 all FF1Bh): then all are named.
@@ -115,6 +115,7 @@ std::vector<std::uint16_t> LineRecord::stations() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::uint16_t> s;
   for (const SlaveRegisters& r : registers_) s.push_back(r.station_address);
+  for (const LaterSlave& l : later_) s.push_back(l.view.is_object() ? l.view.value("address", std::uint16_t{0}) : std::uint16_t{0});
   return s;
 }
 
@@ -183,7 +184,8 @@ json LineRecord::slave_json(std::size_t i) const {
             {"al_state_name", al_state_text(r.al_status)}, {"al_error", error},
             {"al_status_code", r.al_status_code},
             {"al_status_text", error || r.al_status_code != 0 ? std::string(master::al_status_code_text(r.al_status_code)) : "No error"},
-            {"rx_errors", r.rx_errors}, {"lost_links", r.lost_links}, {"parent", s.parent}, {"parent_port", s.parent_port}};
+            {"rx_errors", r.rx_errors}, {"lost_links", r.lost_links}, {"parent", s.parent}, {"parent_port", s.parent_port},
+            {"answers", true}};
   j["dc"] = {{"enabled", r.dc_active}, {"system_time_difference_ns", r.system_time_difference},
              {"locked", r.dc_active && std::llabs(r.system_time_difference) < kDcLockNs}};
   j["drive"] = drive_json(i);
@@ -199,11 +201,24 @@ json LineRecord::line(Nanos now) const {
     for (const std::uint8_t c : r.rx_errors) rx += c;
     for (const std::uint8_t c : r.lost_links) lost += c;
   }
+  // The line's frames are counted where the master is; stalls and the ports' counters in every part.
+  std::uint64_t stalls = bus_.host_stalls;
+  std::int64_t longest = bus_.longest_host_stall;
+  for (const LaterSlave& l : later_) {
+    if (!l.view.is_object()) continue;
+    for (const json& c : l.view.value("rx_errors", json::array())) rx += c.get<std::uint64_t>();
+    for (const json& c : l.view.value("lost_links", json::array())) lost += c.get<std::uint64_t>();
+  }
+  for (const auto& [first, p] : part_stalls_) {
+    stalls += p.count;
+    longest = std::max(longest, p.longest_ns);
+  }
   j["counters"] = {{"frames_in", bus_.frames_in}, {"frames_out", bus_.frames_out}, {"frames_dropped", bus_.frames_dropped},
                    {"send_failed", bus_.send_failed}, {"rx_errors", rx}, {"lost_links", lost},
-                   {"host_stalls", bus_.host_stalls}, {"longest_host_stall_ns", bus_.longest_host_stall}};
+                   {"host_stalls", stalls}, {"longest_host_stall_ns", longest}};
   json slaves = json::array();
   for (std::size_t i = 0; i < slaves_.size(); ++i) slaves.push_back(slave_json(i));
+  for (std::size_t k = 0; k < later_.size(); ++k) slaves.push_back(later_slave_json(k));
   j["slaves"] = std::move(slaves);
   json faults = json::array();
   for (const control::FaultStatus& f : faults_)
@@ -234,22 +249,31 @@ json LineRecord::samples(std::uint64_t since, int slave) const {
   json axes = json::array();
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     if (!slaves_[i].drive || (slave != 0 && slave != static_cast<int>(i + 1))) continue;
-    json t = json::array(), target = json::array(), pos = json::array(), vel = json::array(), torque = json::array(), ferr = json::array();
-    const std::deque<Point>& points = axes_[i].points;
-    // Points are in sequence order: skip to the first new one.
-    auto it = std::upper_bound(points.begin(), points.end(), since, [](std::uint64_t s, const Point& p) { return s < p.seq; });
-    for (; it != points.end(); ++it) {
-      t.push_back(seconds(it->time - origin_));
-      target.push_back(it->target_position);
-      pos.push_back(it->position);
-      vel.push_back(it->velocity);
-      torque.push_back(it->torque);
-      ferr.push_back(it->following_error);
-    }
-    axes.push_back({{"slave", i + 1}, {"t", std::move(t)}, {"target_position", std::move(target)}, {"position", std::move(pos)},
-                    {"velocity", std::move(vel)}, {"torque", std::move(torque)}, {"following_error", std::move(ferr)}});
+    axes.push_back(points_json(static_cast<int>(i + 1), axes_[i].points, since));
+  }
+  for (std::size_t k = 0; k < later_.size(); ++k) {
+    const int position = static_cast<int>(slaves_.size() + k + 1);
+    const json& view = later_[k].view;
+    if (!view.is_object() || view.value("drive", json()).is_null() || (slave != 0 && slave != position)) continue;
+    axes.push_back(points_json(position, later_[k].points, since));
   }
   return {{"seq", sample_seq_}, {"axes", std::move(axes)}};
+}
+
+json LineRecord::points_json(int slave, const std::deque<Point>& points, std::uint64_t since) const {
+  json t = json::array(), target = json::array(), pos = json::array(), vel = json::array(), torque = json::array(), ferr = json::array();
+  // Points are in sequence order: skip to the first new one.
+  auto it = std::upper_bound(points.begin(), points.end(), since, [](std::uint64_t s, const Point& p) { return s < p.seq; });
+  for (; it != points.end(); ++it) {
+    t.push_back(seconds(it->time - origin_));
+    target.push_back(it->target_position);
+    pos.push_back(it->position);
+    vel.push_back(it->velocity);
+    torque.push_back(it->torque);
+    ferr.push_back(it->following_error);
+  }
+  return {{"slave", slave}, {"t", std::move(t)}, {"target_position", std::move(target)}, {"position", std::move(pos)},
+          {"velocity", std::move(vel)}, {"torque", std::move(torque)}, {"following_error", std::move(ferr)}};
 }
 
 json LineRecord::events(std::uint64_t since, const std::string& kind, int slave) const {

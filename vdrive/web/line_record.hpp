@@ -5,8 +5,13 @@
 // set_faults(); the page and the API read it as JSON. Every sample and event gets a sequence
 // number, so a client asks for what is new since the last one it saw. Thread-safe (one mutex,
 // web threads only).
+//
+// In part 1 of a line over processes the record holds the later parts' slaves too, after its
+// own: their views, plot points and events as those parts' own pages gave them (PartPages), with
+// whole-line positions and this record's sequence numbers (line_record_parts.cpp).
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -34,7 +39,8 @@ public:
   static constexpr std::size_t kEvents = 2000;
   static constexpr std::size_t kEmergencies = 16;     // per axis
 
-  LineRecord(std::vector<SlaveInfo> slaves, LineIdentity identity, Nanos origin);
+  // `later_slaves`: slaves after these that later parts of the run serve (0: none).
+  LineRecord(std::vector<SlaveInfo> slaves, LineIdentity identity, Nanos origin, std::size_t later_slaves = 0);
 
   void add(const telemetry::Sample& sample);
   // `now`: when they were copied (an SDO abort found then is an event at that time).
@@ -49,7 +55,20 @@ public:
     change(*scenario_);
   }
 
-  std::size_t size() const { return slaves_.size(); }
+  // A later part's slaves, `first` the whole-line index of its first: as its own page's line
+  // shows them (positions made whole-line), its plot points and events as its API answers them
+  // after the last taken. Throw nlohmann::json::exception on a line of another shape.
+  void set_part_line(std::size_t first, const nlohmann::json& line);
+  void add_part_samples(std::size_t first, const nlohmann::json& samples);
+  void add_part_events(std::size_t first, const nlohmann::json& events);
+  // The part does not answer (`why`): its slaves keep their last view, their AL state shown as
+  // "no answer", and an event says so.
+  void set_part_silent(std::size_t first, std::size_t count, const std::string& why, Nanos time);
+
+  // Every slave of the line, this process's and the later parts'.
+  std::size_t size() const { return slaves_.size() + later_.size(); }
+  // Whether slave index `i` is this process's (SlaveInfo, dictionaries, the loop reach it).
+  bool served_here(std::size_t i) const { return i < slaves_.size(); }
   // Each slave's station address (0010h) in cable order, as last copied (0: none set yet).
   std::vector<std::uint16_t> stations() const;
   const SlaveInfo& slave(std::size_t i) const { return slaves_[i]; }
@@ -89,7 +108,20 @@ private:
     std::deque<Point> points;
     std::deque<Emergency> emergencies;
   };
+  // A later part's slave (index among the later ones) and what its part last said of its own
+  // host stalls.
+  struct LaterSlave {
+    nlohmann::json view;  // null until its part first answers
+    bool answers = false;
+    std::deque<Point> points;
+  };
+  struct PartStalls {
+    std::uint64_t count = 0;
+    std::int64_t longest_ns = 0;
+  };
   void push_event(Event e);
+  nlohmann::json later_slave_json(std::size_t j) const;
+  nlohmann::json points_json(int slave, const std::deque<Point>& points, std::uint64_t since) const;
   nlohmann::json slave_json(std::size_t i) const;
   nlohmann::json drive_json(std::size_t i) const;
   std::string alarm_text(std::size_t i, std::uint16_t error_code) const;
@@ -105,6 +137,8 @@ private:
   std::vector<control::FaultStatus> faults_;
   std::deque<Event> events_;
   std::optional<ScenarioView> scenario_;
+  std::vector<LaterSlave> later_;
+  std::map<std::size_t, PartStalls> part_stalls_;  // by the part's first slave
   std::uint64_t sample_seq_ = 0, event_seq_ = 0;
 };
 

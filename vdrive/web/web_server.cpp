@@ -30,13 +30,7 @@ constexpr int kMaxStreams = 6;
 // connections alive: enough threads that the API is still answered with every stream open.
 constexpr std::size_t kServerThreads = 16;
 constexpr auto kStreamPeriod = 40ms;  // 25 updates a second, paced by deadline
-
-std::string make_token() {
-  std::random_device random;
-  std::string t;
-  for (int i = 0; i < 4; ++i) t += fmt::format("{:08x}", random());
-  return t;
-}
+constexpr auto kPartsPeriod = 100ms;  // the later parts' pages read 10 times a second
 
 // Equal in time independent of where they differ.
 bool same(const std::string& a, const std::string& b) {
@@ -55,6 +49,13 @@ void refuse(httplib::Response& res, int status, const std::string& message) {
 
 }  // namespace
 
+std::string new_token() {
+  std::random_device random;
+  std::string t;
+  for (int i = 0; i < 4; ++i) t += fmt::format("{:08x}", random());
+  return t;
+}
+
 struct WebServer::Impl {
   network::Network& network;
   const Clock& clock;
@@ -64,22 +65,29 @@ struct WebServer::Impl {
   telemetry::Sampler sampler;
   LoopCalls calls;
   telemetry::LoopServices services;
+  PartPages parts;
   LineRecord record;
   WebContext context;
   httplib::Server server;
   int port = 0;
   std::atomic<bool> stopping{false};
   std::atomic<int> streams{0};
-  std::thread pump_thread, server_thread;
+  std::thread pump_thread, server_thread, parts_thread;
 
   Impl(network::Network& n, const Clock& c, const runtime::LoopCounters& counters, control::FaultService* faults,
        WebServerOptions o, std::function<void()> wake)
-      : network(n), clock(c), options(std::move(o)), token(options.address.loopback() ? "" : make_token()),
+      : network(n), clock(c), options(std::move(o)),
+        token(!options.token.empty() ? options.token : options.address.loopback() ? "" : new_token()),
         sampler(n, options.sample_rate_hz, telemetry::SamplerSources{&counters, nullptr, faults != nullptr ? &faults->injector() : nullptr}),
         calls(std::move(wake)), services(&sampler, &calls),
-        record(slave_infos(n), LineIdentity{options.source, options.interface, options.version, !token.empty()}, c.now()),
-        context{n, c, faults, record, calls, {}, {}, {}, 1} {
+        parts(options.parts, options.parts_token),
+        record(slave_infos(n), LineIdentity{options.source, options.interface, options.version, !token.empty()},
+               options.origin.value_or(c.now()), parts.slaves()),
+        context{n, c, faults, record, calls, {}, {}, {}, 1, nullptr, {}} {
     for (std::size_t i = 0; i < n.size(); ++i) context.dictionaries.push_back(&n.firmware(i).objects().dictionary());
+    if (options.run_parts > 1) sampler.set_place({0, options.run_part, options.run_parts, 0});
+    if (!parts.empty()) context.parts = &parts;
+    context.route = options.route;
   }
 
   bool host_allowed(const httplib::Request& req) const {
@@ -173,15 +181,26 @@ struct WebServer::Impl {
           record.set_registers(registers, copied);
         next_registers = now + 100ms;
       }
-      if (now >= next_faults && context.faults != nullptr) {
+      if (now >= next_faults && (context.faults != nullptr || context.route)) {
         control::ControlRequest r;
         r.op = control::ControlRequest::Op::list;
-        const control::ControlReply reply = context.fault_call(r);
+        const control::ControlReply reply = context.fault_call(r, R"({"op":"list"})");
         if (reply.ok()) record.set_faults(reply.faults);
         next_faults = now + 250ms;
       }
       inject_due();
       std::this_thread::sleep_for(20ms);
+    }
+  }
+
+  // The later parts' pages into the record, on a thread of its own: a part that does not answer
+  // holds up only this.
+  void pump_parts() {
+    auto next = std::chrono::steady_clock::now();
+    while (!stopping.load()) {
+      parts.poll(record, clock.now());
+      next = std::max(next + kPartsPeriod, std::chrono::steady_clock::now());
+      while (!stopping.load() && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(10ms);
     }
   }
 
@@ -200,7 +219,7 @@ struct WebServer::Impl {
       }
     }
     for (const ScheduledFault& f : due) {
-      const control::ControlReply reply = context.fault_call(f.request);
+      const control::ControlReply reply = context.fault_call(f.request, f.line);
       if (!reply.ok()) record.note(f.request.fault.slave, "fault_refused", f.ticket, 0, reply.error, clock.now());
     }
   }
@@ -234,6 +253,7 @@ struct WebServer::Impl {
                                  std::strerror(errno != 0 ? errno : EADDRINUSE)));
     server_thread = std::thread([this] { server.listen_after_bind(); });
     pump_thread = std::thread([this] { pump(); });
+    if (!parts.empty()) parts_thread = std::thread([this] { pump_parts(); });
   }
 
   void stop() {
@@ -242,6 +262,7 @@ struct WebServer::Impl {
     server.stop();
     if (server_thread.joinable()) server_thread.join();
     if (pump_thread.joinable()) pump_thread.join();
+    if (parts_thread.joinable()) parts_thread.join();
   }
 };
 

@@ -14,13 +14,22 @@
 // in the fragment for the page). Changes need Content-Type: application/json (a form on another
 // site cannot send one), a loopback server answers only Host names of this machine (no DNS
 // rebinding), bodies are limited to 64 KiB and the live streams to 6 at a time.
+//
+// Part 1 of a line over processes shows the whole line: a second pump reads the later parts'
+// own pages every 100 ms, and a request for one of their slaves goes on to the part that serves
+// it (PartPages); faults and signals go through the run's router (`route`).
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "common/clock.hpp"
+#include "vdrive/control/control_request.hpp"
 #include "vdrive/runtime/loop_service.hpp"
+#include "vdrive/web/part_pages.hpp"
 #include "vdrive/web/web_address.hpp"
 
 namespace vdrive::network { class Network; }
@@ -43,7 +52,25 @@ struct WebServerOptions {
   std::string interface;       // the served interface, for the page's title
   std::string version;
   double sample_rate_hz = 50.0;
+  // The record's time origin on `clock` (time_ns 0); default: when the server starts. The parts
+  // of a line over processes share one clock epoch and give 0, so their times compare.
+  std::optional<Nanos> origin;
+  // When set, a change needs this token even on loopback: a later part's page, which part 1's
+  // page alone calls.
+  std::string token;
+  // A part of a line over processes (0-based, of run_parts): its fault events carry run-wide ids
+  // (control/run_fault_id.hpp), as `vdrive fault list` shows them.
+  std::size_t run_part = 0, run_parts = 1;
+  // A line over processes: the later parts' own pages, read into this page (part_pages.hpp).
+  std::vector<PartPage> parts;
+  std::string parts_token;
+  // Set: fault and signal requests go there (the run's PartRouter, which blocks; called on the
+  // server's threads) instead of to this process's fault service alone.
+  std::function<control::ControlReply(const control::ControlRequest&, std::string_view line)> route;
 };
+
+// A fresh random token (128 bits, hex), as a server beyond loopback makes for itself.
+std::string new_token();
 
 class WebServer {
 public:

@@ -5,7 +5,7 @@
 (() => {
   const API = '/api/v1';
   const EVENT_KINDS = ['al_state', 'alarm_raised', 'alarm_cleared', 'fault_injected', 'fault_cleared', 'fault_refused',
-    'plant_set', 'signal', 'host_stall', 'od_write', 'od_abort', 'sdo_abort', 'scenario'];
+    'plant_set', 'signal', 'host_stall', 'od_write', 'od_abort', 'sdo_abort', 'scenario', 'part_silent', 'part_answers'];
   const TEXT_TYPES = /^(VS|US|VISIBLE_STRING|UNICODE_STRING)$/i;   // written as text; everything else as a number or hex
   const MAX_EVENTS = 2000;           // what the server keeps, so a reload shows the same log
   const MAX_ROWS = 400;              // rows in the table: an alarm storm on 64 drives must not lay out thousands
