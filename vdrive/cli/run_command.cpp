@@ -531,10 +531,6 @@ void run(RunOptions o) {
   for (const machine::ArmedFault& a : o.network.faults) faults.arm(a.spec, clock.now() + a.at, a.origin);
 
   std::atomic<bool>& stop = runtime::stop_on_termination_signals();
-  spdlog::info("serving {} slave(s) on {}: {} (hop delay {} ns{}{}); SIGINT/SIGTERM stops",
-               o.drives.size(), where, fmt::join(o.drives, ", "), o.hop_delay,
-               o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "",
-               o.batch_steps_us != 0 ? fmt::format(", control steps batched within {} us", o.batch_steps_us) : "");
   if (onward_link)
     spdlog::info("the line goes on through {} (port 1 of slave {}; link {})", o.next_iface,
                  network->segment().onward_slave() + 1, onward_link->carrier() ? "up" : "down: the line ends here until it comes up");
@@ -602,6 +598,10 @@ void run(RunOptions o) {
                                                     std::strerror(err)));
   }
   apply_time_slice(o);
+  spdlog::info("serving {} slave(s) on {}: {} (hop delay {} ns{}{}); SIGINT/SIGTERM stops",
+               o.drives.size(), where, fmt::join(o.drives, ", "), o.hop_delay,
+               o.rt_priority != 0 ? fmt::format(", SCHED_FIFO {}", o.rt_priority) : "",
+               o.batch_steps_us != 0 ? fmt::format(", control steps batched within {} us", o.batch_steps_us) : "");
   if (o.ready_fd >= 0) {  // the parent of --processes waits for this before it serves
     const std::string ready = page ? fmt::format("R{}", page->port()) : "R";
     if (::write(o.ready_fd, ready.data(), ready.size()) != static_cast<ssize_t>(ready.size()))
