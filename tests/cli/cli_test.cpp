@@ -313,5 +313,23 @@ TEST(CliServe, TapModeServesTheMasterOnTheTapInterface) {
   EXPECT_FALSE(test::run_quiet("ip link show " + tap)) << "the TAP device outlived vdrive";
 }
 
+// --tap with --processes: part 1 serves the TAP device, the later parts behind it on veth pairs.
+TEST(CliServe, TapModeServesALineOverProcesses) {
+  if (!test::running_as_root()) GTEST_SKIP() << "needs root (TAP, veth)";
+  if (!have_product("a6b")) GTEST_SKIP() << "profile a6b not in this build yet";
+  const std::string tap = "vdt" + std::to_string(::getpid()) + "p";
+  test::ChildProcess run(VDRIVE_BINARY, {"run", "--tap", tap, "--processes", "2", "--drive", "a6b", "a6b", "a6b"});
+  ASSERT_TRUE(run.wait_for_stderr("serving 2 slave(s) on TAP", 30s)) << run.finish().err;
+  {
+    link::RawSocketLink master(tap);
+    EXPECT_EQ(brd_working_counter(master), 3) << "the BRD passed part 1's two slaves and part 2's one";
+  }
+  run.signal(SIGTERM);
+  const auto done = run.finish(10s);
+  EXPECT_EQ(done.exit_code, 0) << done.err;
+  EXPECT_NE(done.err.find("part 2 (slave 3) serves"), std::string::npos) << done.err;
+  EXPECT_FALSE(test::run_quiet("ip link show " + tap)) << "the TAP device outlived vdrive";
+}
+
 }  // namespace
 }  // namespace vdrive::cli

@@ -337,7 +337,6 @@ std::vector<std::string> plants_of_part(const std::vector<std::string>& plants, 
 
 // --processes N: parts 2..N in child processes chained over veth pairs, part 1 served here.
 void run_in_parts(RunOptions o) {
-  if (!o.tap.empty()) throw CliError(kExitBadArguments, "--processes: serves on --iface, not --tap");
   if (o.drives.empty()) throw CliError(kExitBadArguments, "no slaves: give --drive (repeat)");
   check_products(o);
   (void)load_plants(o);  // every plant file checked, positions as the user counts them
