@@ -24,9 +24,6 @@ TEST(RunProcesses, TheCommandNamesWhatCannotBeSplit) {
   r = vdrive({"run", "--iface", "lo", "--processes", "0", "--drive", "a6b"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--processes"), std::string::npos) << r.err;
-  r = vdrive({"run", "--tap", "vdt0", "--processes", "2", "--drive", "a6b", "ds5c1"});
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--processes: serves on --iface, not --tap"), std::string::npos) << r.err;
   r = vdrive({"run", "--iface", "lo", "--processes", "2", "--drive", "a6b", "nosuchdrive"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("nosuchdrive"), std::string::npos) << r.err;
