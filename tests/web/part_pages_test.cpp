@@ -32,8 +32,10 @@ WebServerOptions first_part(int later_port) {
 json body_of(const httplib::Result& r) { return r ? json::parse(r->body) : json{}; }
 
 TEST(PartPages, PartOnesPageShowsTheWholeLine) {
-  WebLine part2("127.0.0.1", {"ds1000a"}, later_part());
-  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, first_part(part2.server().port()));
+  const WebServerOptions later = later_part();
+  WebLine part2("127.0.0.1", {"ds1000a"}, &later);
+  const WebServerOptions first = first_part(part2.server().port());
+  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, &first);
   ASSERT_TRUE(part1.assign_station_addresses(0x1001));
   ASSERT_TRUE(part2.assign_station_addresses(0x1003));
   ASSERT_TRUE(eventually([&] {
@@ -60,8 +62,10 @@ TEST(PartPages, PartOnesPageShowsTheWholeLine) {
 }
 
 TEST(PartPages, ALaterSlavesRequestsGoToItsPart) {
-  WebLine part2("127.0.0.1", {"ds1000a"}, later_part());
-  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, first_part(part2.server().port()));
+  const WebServerOptions later = later_part();
+  WebLine part2("127.0.0.1", {"ds1000a"}, &later);
+  const WebServerOptions first = first_part(part2.server().port());
+  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, &first);
   ASSERT_TRUE(part2.assign_station_addresses(0x1003));
   ASSERT_TRUE(eventually([&] { return part1.get("/api/v1/line")["slaves"][2]["address"] == 0x1003; }));
 
@@ -97,7 +101,8 @@ TEST(PartPages, ALaterSlavesRequestsGoToItsPart) {
 }
 
 TEST(PartPages, APartsPageTakesChangesOnlyWithTheRunsToken) {
-  WebLine part2("127.0.0.1", {"ds1000a"}, later_part());
+  const WebServerOptions later = later_part();
+  WebLine part2("127.0.0.1", {"ds1000a"}, &later);
   auto r = part2.client().Put("/api/v1/slaves/1/objects/0x6060/0", R"({"value":8})", kJson);
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 401);
@@ -110,7 +115,8 @@ TEST(PartPages, APartsPageTakesChangesOnlyWithTheRunsToken) {
 }
 
 TEST(PartPages, FaultsAndSignalsGoThroughTheRunsRouter) {
-  WebLine part2("127.0.0.1", {"ds1000a"}, later_part());
+  const WebServerOptions later = later_part();
+  WebLine part2("127.0.0.1", {"ds1000a"}, &later);
   std::mutex m;
   std::vector<std::string> routed;
   WebServerOptions o = first_part(part2.server().port());
@@ -121,7 +127,7 @@ TEST(PartPages, FaultsAndSignalsGoThroughTheRunsRouter) {
     if (r.op == control::ControlRequest::Op::inject) reply.id = 2;
     return reply;
   };
-  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, o);
+  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, &o);
   auto r = part1.client().Post("/api/v1/faults", R"({"kind":"overload","slave":3})", kJson);
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 201) << r->body;
@@ -134,19 +140,21 @@ TEST(PartPages, FaultsAndSignalsGoThroughTheRunsRouter) {
   ASSERT_TRUE(r);
   r = part1.client().Put("/api/v1/signals/door", R"({"value":1})", kJson);
   ASSERT_TRUE(r);
-  const std::lock_guard<std::mutex> lock(m);
   const auto asked = [&](const std::string& part) {
+    const std::lock_guard<std::mutex> lock(m);
     return std::any_of(routed.begin(), routed.end(), [&](const std::string& l) { return l.find(part) != std::string::npos; });
   };
+  EXPECT_TRUE(eventually([&] { return asked(R"({"op":"list"})"); })) << "the page's list of active faults too";
   EXPECT_TRUE(asked(R"("op":"inject")") && asked(R"("slave":3)"));
   EXPECT_TRUE(asked(R"({"id":2,"op":"clear"})"));
   EXPECT_TRUE(asked(R"("signal":"door")"));
-  EXPECT_TRUE(asked(R"({"op":"list"})")) << "the page's list of active faults too";
 }
 
 TEST(PartPages, APartThatEndsIsNamedAndItsSlavesMarked) {
-  auto part2 = std::make_unique<WebLine>("127.0.0.1", std::vector<std::string>{"ds1000a"}, later_part());
-  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, first_part(part2->server().port()));
+  const WebServerOptions later = later_part();
+  auto part2 = std::make_unique<WebLine>("127.0.0.1", std::vector<std::string>{"ds1000a"}, &later);
+  const WebServerOptions first = first_part(part2->server().port());
+  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, &first);
   ASSERT_TRUE(eventually([&] { return part1.get("/api/v1/line")["slaves"][2]["answers"] == true; }));
   part2.reset();
   ASSERT_TRUE(eventually([&] { return part1.get("/api/v1/line")["slaves"][2]["answers"] == false; }));

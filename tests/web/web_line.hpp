@@ -23,11 +23,12 @@ namespace vdrive::web::test {
 
 class WebLine {
 public:
-  // `base`: the server's other options (a part of a line over processes).
+  // `base` (optional): the server's other options (a part of a line over processes).
   explicit WebLine(std::string host = "127.0.0.1", std::vector<std::string> drives = {"a6b", "ds5c1", "ds1000a"},
-                   WebServerOptions base = {})
+                   const WebServerOptions* base = nullptr)
       : network_(drives, clock_), faults_(network_, nullptr, nullptr) {
-    WebServerOptions o = std::move(base);
+    WebServerOptions o;
+    if (base != nullptr) o = *base;
     o.address.host = std::move(host);
     o.address.port = 0;
     o.source = "test";

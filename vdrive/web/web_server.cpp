@@ -181,11 +181,9 @@ struct WebServer::Impl {
           record.set_registers(registers, copied);
         next_registers = now + 100ms;
       }
-      if (now >= next_faults && (context.faults != nullptr || context.route)) {
-        control::ControlRequest r;
-        r.op = control::ControlRequest::Op::list;
-        const control::ControlReply reply = context.fault_call(r, R"({"op":"list"})");
-        if (reply.ok()) record.set_faults(reply.faults);
+      // Through the run's router the list waits for every part: the parts' pump takes it then.
+      if (now >= next_faults && context.faults != nullptr && !context.route) {
+        list_faults();
         next_faults = now + 250ms;
       }
       inject_due();
@@ -193,12 +191,20 @@ struct WebServer::Impl {
     }
   }
 
-  // The later parts' pages into the record, on a thread of its own: a part that does not answer
-  // holds up only this.
+  void list_faults() {
+    control::ControlRequest r;
+    r.op = control::ControlRequest::Op::list;
+    const control::ControlReply reply = context.fault_call(r, R"({"op":"list"})");
+    if (reply.ok()) record.set_faults(reply.faults);
+  }
+
+  // The later parts' pages, and the run's faults through its router, into the record, on a
+  // thread of its own: a part that does not answer holds up only this, never the samples' pump.
   void pump_parts() {
     auto next = std::chrono::steady_clock::now();
     while (!stopping.load()) {
-      parts.poll(record, clock.now());
+      if (!parts.empty()) parts.poll(record, clock.now());
+      if (context.route) list_faults();
       next = std::max(next + kPartsPeriod, std::chrono::steady_clock::now());
       while (!stopping.load() && std::chrono::steady_clock::now() < next) std::this_thread::sleep_for(10ms);
     }
@@ -253,7 +259,7 @@ struct WebServer::Impl {
                                  std::strerror(errno != 0 ? errno : EADDRINUSE)));
     server_thread = std::thread([this] { server.listen_after_bind(); });
     pump_thread = std::thread([this] { pump(); });
-    if (!parts.empty()) parts_thread = std::thread([this] { pump_parts(); });
+    if (!parts.empty() || context.route) parts_thread = std::thread([this] { pump_parts(); });
   }
 
   void stop() {

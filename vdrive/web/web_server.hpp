@@ -16,8 +16,9 @@
 // rebinding), bodies are limited to 64 KiB and the live streams to 6 at a time.
 //
 // Part 1 of a line over processes shows the whole line: a second pump reads the later parts'
-// own pages every 100 ms, and a request for one of their slaves goes on to the part that serves
-// it (PartPages); faults and signals go through the run's router (`route`).
+// own pages and the run's active faults (through its router, `route`) every 100 ms, so a part
+// that hangs delays neither the samples nor the page; a request for one of the later parts'
+// slaves goes on to the part that serves it (PartPages); faults and signals go through the router.
 #include <functional>
 #include <memory>
 #include <optional>
