@@ -157,6 +157,13 @@ TEST(StatusLineText, StatesErrorsFramesAndRate) {
             "3 slaves 1:Op 2:SafeOp+E(001B) 3:PreOp | frames 1500 in 1499 out | rx errors 4 | dropped 2 | send failed 1");
 }
 
+// Part 1 of a line over processes shows a later part it could not ask as "?" (AL status 0 is
+// no state an ESC reports).
+TEST(StatusLineText, ASlaveNotReadIsAQuestionMark) {
+  const StatusSample now = sample(0, {{0x08, 0, 0}, {0x00, 0, 0}}, 10, 10);
+  EXPECT_EQ(format_status_line(now, nullptr), "2 slaves 1:Op 2:? | frames 10 in 10 out | rx errors 0 | dropped 0 | send failed 0");
+}
+
 TEST(StatusLineText, WireFaultLossesWhenServedBehindAWireStage) {
   StatusSample now = sample(0, {{0x08, 0, 0}}, 90, 88);
   now.wire = WireLosses{12, 3};

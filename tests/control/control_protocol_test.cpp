@@ -201,5 +201,18 @@ TEST(ControlProtocol, BadBytesInARequestStillGetAJsonReply) {
   EXPECT_EQ(parse_reply(line).status, ControlReply::Status::bad_request);
 }
 
+TEST(ControlProtocol, LineStatusCarriesEachSlavesAlStateAndErrors) {
+  EXPECT_EQ(parse_request(R"({"op":"line_status"})").op, ControlRequest::Op::line_status);
+  EXPECT_THAT(refusal(R"({"op":"line_status","slave":1})"), HasSubstr("\"slave\" does not belong in a \"line_status\" request"));
+  ControlReply reply;
+  reply.states = {{0x08, 0, 0}, {0x14, 0x001B, 3}};
+  const ControlReply back = parse_reply(format_reply(reply));
+  ASSERT_EQ(back.states.size(), 2u);
+  EXPECT_EQ(back.states[1].al_status, 0x14);
+  EXPECT_EQ(back.states[1].al_status_code, 0x001B);
+  EXPECT_EQ(back.states[1].rx_errors, 3u);
+  EXPECT_TRUE(parse_reply(format_reply(ControlReply{})).states.empty());
+}
+
 }  // namespace
 }  // namespace vdrive::control

@@ -213,6 +213,20 @@ TEST_F(PartRouterTest, APartThatHasEndedIsNamedAndTheOthersStillReport) {
   EXPECT_TRUE(own_.injector().active().empty());
 }
 
+// The status line of part 1 counts every part's slaves: line_status is each slave's AL state, in
+// line order, and a part that does not answer is the error.
+TEST_F(PartRouterTest, LineStatusListsEverySlaveOfEveryPartInLineOrder) {
+  ControlReply r = ask(R"({"op":"line_status"})");
+  ASSERT_TRUE(r.ok()) << r.error;
+  ASSERT_EQ(r.states.size(), 3u);
+  for (const SlaveState& s : r.states) EXPECT_EQ(s.al_status & 0x0F, 1) << "every slave in Init";
+  EXPECT_EQ(asked_["part2.sock"].back(), R"({"op":"line_status"})");
+  gone_ = true;
+  r = ask(R"({"op":"line_status"})");
+  EXPECT_EQ(r.status, ControlReply::Status::failed);
+  EXPECT_THAT(r.error, HasSubstr("part 2 (slave 3) does not answer"));
+}
+
 std::int64_t read(network::Network& net, const std::string& point) { return net.resolve(net.parse_point(point)).read(); }
 
 TEST_F(PartRouterTest, SignalsListEveryPartsNamedSignalsInLineOrder) {

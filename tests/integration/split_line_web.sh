@@ -9,7 +9,8 @@
 # faults panel starts an overload at slave 3 (it acts in part 2 through the run's router) and its
 # axis panel shows the DS1000A-EC's alarm, and a write of 6041h:00 is refused with 0x06010002.
 # The API then shows slave 3's 603Fh FF01h, and the page's fault under its run-wide id. Part 2
-# killed: its slaves are marked, and a request for slave 3 is a 503 naming the part. With
+# killed: its slaves are marked, and a request for slave 3 is a 503 naming the part. Part 1's
+# status line shows all three slaves, and slave 3 as "?" once part 2 is gone. With
 # --rt-priority only the serving threads are SCHED_FIFO (a browser loading a page served at the
 # loop's priority once starved the line into SM watchdog errors).
 #
@@ -41,7 +42,7 @@ make_veth_line
 # Not in the namespace: --netns opens the interfaces there, and the page stays here.
 # Real-time priority for the line and the master: the browser's start must not starve them.
 "$VDRIVE" run --netns "$NS" --iface "$S_IF" --processes 2 --control "$WORK/control.sock" --web "127.0.0.1:$PORT" \
-  --rt-priority 80 --no-status --drive a6b ds5c1 ds1000a >"$WORK/vdrive.log" 2>&1 &
+  --rt-priority 80 --status --drive a6b ds5c1 ds1000a >"$WORK/vdrive.log" 2>&1 &
 VDRIVE_PID=$!
 wait_for_line
 grep -q "\[part 2\].*web page on http://127.0.0.1:" "$WORK/vdrive.log" || { cat "$WORK/vdrive.log"; fail "part 2 serves no page of its own"; }
@@ -72,6 +73,11 @@ echo "line through part 1's page: $line_ok"
 [ "$line_ok" = "1:a6b:Op:0x1001:0,2:ds5c1:Op:0x1002:1,3:ds1000a:Op:0x1003:2" ] \
   || { cat "$WORK/line.json" "$WORK/vdrive.log"; fail "part 1's page does not show the whole line in Op"; }
 
+# Part 1's status line (once a second into the log) counts part 2's slave too.
+status_shows() { local _; for _ in $(seq 1 30); do grep -q "^status: $1" "$WORK/vdrive.log" && return 0; sleep 0.2; done; return 1; }
+status_shows "3 slaves 1:Op 2:Op 3:Op |" || { grep "^status:" "$WORK/vdrive.log" | tail -3; fail "part 1's status line does not show the whole line in Op"; }
+echo "status line: $(grep "^status: 3 slaves 1:Op 2:Op 3:Op" "$WORK/vdrive.log" | tail -1 | cut -c1-60)"
+
 vendor=$(curl -sf "$API/slaves/3/objects/0x1018/1" | jq_py 'd["value"]') || fail "1018h:01 of slave 3 not read"
 direct=$(curl -sf "$API/slaves/0x1003/objects/0x1018/1" | jq_py 'd["value"]')
 echo "slave 3 1018h:01 = $vendor (by address: $direct)"
@@ -84,7 +90,7 @@ nice -n 10 "$PY" "$CHECK" --url "http://127.0.0.1:$PORT/" --slaves 3 --fault ove
   --result "$WORK/page.json" --chromium "$CHROMIUM"
 rc=$?
 if [ $rc -ne 0 ]; then
-  echo "--- vdrive run (host stalls: $(grep -c "host stall" "$WORK/vdrive.log"))"; grep -v "host stall" "$WORK/vdrive.log" | tail -40
+  echo "--- vdrive run (host stalls: $(grep -c "host stall" "$WORK/vdrive.log"))"; grep -v "host stall\|^status:" "$WORK/vdrive.log" | tail -40
   echo "--- vdrive-master op"; tail -n 5 "$WORK/op.txt" "$WORK/op.err"
   [ $rc -eq 77 ] && exit 77
   fail "the page check failed (exit $rc)"
@@ -109,6 +115,7 @@ for _ in $(seq 1 50); do
   sleep 0.2
 done
 [ "$marked" = "no answer" ] || fail "slave 3 after part 2 ended: '$marked'"
+status_shows "3 slaves 1:[A-Za-z+E()0-9]* 2:[A-Za-z+E()0-9]* 3:? |" || { grep "^status:" "$WORK/vdrive.log" | tail -3; fail "part 1's status line does not show part 2's slave as '?'"; }
 refusal=$(curl -s -w ' %{http_code}' "$API/slaves/3/objects/0x1000/0")
 echo "slave 3 after part 2 ended: $refusal"
 echo "$refusal" | grep -q 'part 2 (slave 3) does not answer.* 503$' || fail "a request for slave 3 is not refused naming part 2"

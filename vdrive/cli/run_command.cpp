@@ -544,6 +544,7 @@ void run(RunOptions o) {
   counters.stalls.set_floor(static_cast<Nanos>(o.stall_ms * 1e6));
   RunStatus status(o.status, *network, counters, &wire);  // the live status line (run_status.hpp)
   status.set_slaves_before(o.slaves_before);
+  if (control) status.set_later_parts(o.later_parts);
   // In a line over processes each part publishes its slaves under whole-line positions; part 1
   // takes the requests and routes their faults as its control socket does.
   o.telemetry.place = {o.slaves_before, o.run_part - 1, o.run_parts, o.later_slaves};

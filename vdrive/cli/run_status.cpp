@@ -13,6 +13,9 @@
 #include <algorithm>
 #include <mutex>
 
+#include "vdrive/control/control_protocol.hpp"
+#include "vdrive/control/control_socket.hpp"
+
 #include "vdrive/cli/line_changes.hpp"
 #include "vdrive/fault/wire_impairment.hpp"
 #include "vdrive/network/network.hpp"
@@ -104,6 +107,19 @@ runtime::LoopService* RunStatus::wrap(runtime::LoopService* next) {
   return publisher_.get();
 }
 
+void RunStatus::append_later_parts(std::vector<runtime::SlaveStatus>& slaves) const {
+  for (const control::RemotePart& p : later_) {
+    std::vector<runtime::SlaveStatus> part(p.count);  // al_status 0: shown as "?"
+    try {
+      const control::ControlReply r = control::parse_reply(control::control_call(p.socket, R"({"op":"line_status"})", kPartTimeout));
+      for (std::size_t i = 0; r.ok() && i < std::min(p.count, r.states.size()); ++i)
+        part[i] = {r.states[i].al_status, r.states[i].al_status_code, r.states[i].rx_errors};
+    } catch (const std::exception&) {  // ControlSocketError, ProtocolError: the part shows as not read
+    }
+    slaves.insert(slaves.end(), part.begin(), part.end());
+  }
+}
+
 void RunStatus::print_loop() {
   // Changes are looked for at the publisher's pace; the line is printed at its own.
   const auto period = kChangePeriod;
@@ -122,7 +138,9 @@ void RunStatus::print_loop() {
     for (const std::string& change : line_changes(*last_change, now, network_, slaves_before_)) spdlog::info("{}", change);
     last_change = now;
     if (!enabled_ || tick % ticks_per_line != 0) continue;
-    const std::string line = runtime::format_status_line(now, before ? &*before : nullptr);
+    runtime::StatusSample shown = now;
+    append_later_parts(shown.slaves);
+    const std::string line = runtime::format_status_line(shown, before ? &*before : nullptr);
     if (terminal_) {
       std::fprintf(stderr, "\r%s\033[K", line.c_str());
       drawn_.store(true);

@@ -7,11 +7,14 @@
 // erases the status line first (a sink put in front of spdlog's), and the status is redrawn below.
 // With or without the line, the thread logs what changes at info level (line_changes.hpp): AL
 // states, AL errors, drive alarms by name; and host stalls (runtime/host_stalls.hpp) at warning
-// level as they happen, a fault that follows one saying so.
+// level as they happen, a fault that follows one saying so. In part 1 of `run --processes` the
+// line counts and shows the later parts' slaves too (set_later_parts).
 #include <atomic>
 #include <memory>
 #include <thread>
+#include <vector>
 
+#include "vdrive/control/part_router.hpp"
 #include "vdrive/runtime/event_loop.hpp"
 #include "vdrive/runtime/line_status.hpp"
 
@@ -46,9 +49,15 @@ public:
   void stop();
   // A later part of --processes: its slaves are logged by their place in the whole line.
   void set_slaves_before(std::size_t n) { slaves_before_ = n; }
+  // Part 1 of --processes: the line shows the later parts' slaves too, each part's AL states
+  // asked of its control socket (line_status) as the line is printed; a part that does not
+  // answer within kPartTimeout shows its slaves as "?". Before wrap().
+  void set_later_parts(std::vector<control::RemotePart> parts) { later_ = std::move(parts); }
 
 private:
+  static constexpr Nanos kPartTimeout = 200'000'000;
   void print_loop();
+  void append_later_parts(std::vector<runtime::SlaveStatus>& slaves) const;
 
   bool enabled_ = false;
   bool terminal_ = false;
@@ -56,6 +65,7 @@ private:
   const runtime::LoopCounters& counters_;
   const fault::WireImpairment* wire_;
   std::size_t slaves_before_ = 0;
+  std::vector<control::RemotePart> later_;
   runtime::LineStatus status_;
   std::unique_ptr<runtime::LineStatusPublisher> publisher_;
   std::atomic<bool> stop_{false};

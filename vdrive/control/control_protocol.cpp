@@ -122,7 +122,7 @@ ControlRequest parse_request(std::string_view line) {
     fail(fmt::format("not a JSON request: {}", e.what()));
   }
   if (!j.is_object()) fail("a request is a JSON object with an \"op\"");
-  constexpr std::string_view kOps = "inject, clear, clear_all, list, signal_get, signal_set, signals, find_station";
+  constexpr std::string_view kOps = "inject, clear, clear_all, list, signal_get, signal_set, signals, find_station, line_status";
   if (!j.contains("op") || !j.at("op").is_string()) fail(fmt::format("\"op\" is missing ({})", kOps));
   const std::string op = j.at("op").get<std::string>();
   const std::set<std::string> allowed = op == "inject"       ? std::set<std::string>{"op", "fault"}
@@ -140,6 +140,7 @@ ControlRequest parse_request(std::string_view line) {
   else if (op == "signal_set") r.op = ControlRequest::Op::signal_set;
   else if (op == "signals") r.op = ControlRequest::Op::signals;
   else if (op == "find_station") r.op = ControlRequest::Op::find_station;
+  else if (op == "line_status") r.op = ControlRequest::Op::line_status;
   else fail(fmt::format("unknown op \"{}\" ({})", op, kOps));
   for (const auto& [key, value] : j.items()) {
     if (!allowed.contains(key)) fail(fmt::format("\"{}\" does not belong in a \"{}\" request", key, op));
@@ -192,6 +193,12 @@ std::string format_reply(const ControlReply& reply) {
     faults.push_back(std::move(o));
   }
   j["faults"] = std::move(faults);
+  if (!reply.states.empty()) {
+    json states = json::array();
+    for (const SlaveState& st : reply.states)
+      states.push_back({{"al_status", st.al_status}, {"al_status_code", st.al_status_code}, {"rx_errors", st.rx_errors}});
+    j["states"] = std::move(states);
+  }
   if (!reply.signals.empty()) {
     json signals = json::array();
     for (const SignalStatus& s : reply.signals)
@@ -221,6 +228,9 @@ ControlReply parse_reply(std::string_view line) {
       r.faults.push_back({f.at("id").get<int>(), f.at("kind").get<std::string>(), f.at("description").get<std::string>(),
                           f.at("elapsed_ns").get<Nanos>(), rem.is_null() ? Nanos{-1} : rem.get<Nanos>()});
     }
+    for (const json& st : j.value("states", json::array()))
+      r.states.push_back({st.at("al_status").get<std::uint16_t>(), st.at("al_status_code").get<std::uint16_t>(),
+                          st.at("rx_errors").get<std::uint32_t>()});
     for (const json& s : j.value("signals", json::array())) {
       r.signals.push_back({s.at("name").get<std::string>(), s.at("point").get<std::string>(),
                            s.at("type").get<std::string>(), s.at("value").get<std::int64_t>()});

@@ -14,7 +14,7 @@
 namespace vdrive::control {
 
 struct ControlRequest {
-  enum class Op : std::uint8_t { inject, clear, clear_all, list, signal_get, signal_set, signals, find_station };
+  enum class Op : std::uint8_t { inject, clear, clear_all, list, signal_get, signal_set, signals, find_station, line_status };
   Op op = Op::list;
   fault::FaultSpec fault;  // inject
   int id = 0;              // clear
@@ -39,6 +39,14 @@ struct SignalStatus {
   std::int64_t value = 0;
 };
 
+// What a status line shows of one slave (line_status: how part 1 of `run --processes` shows the
+// later parts' slaves in its own).
+struct SlaveState {
+  std::uint16_t al_status = 0;       // 0x0130
+  std::uint16_t al_status_code = 0;  // 0x0134
+  std::uint32_t rx_errors = 0;       // the error counters 0x0300-0x030C, summed
+};
+
 struct ControlReply {
   // Why a request failed: the caller's mistake (exit 2), a peer that may not control this vdrive
   // (exit 4), or the server (exit 1).
@@ -50,6 +58,7 @@ struct ControlReply {
   int slave = 0;                     // find_station: the slave (from 1) that has the address
   std::vector<FaultStatus> faults;   // list
   std::vector<SignalStatus> signals; // signal_get, signal_set (the value after the write), signals
+  std::vector<SlaveState> states;    // line_status: every slave of this process, in cable order
   std::uint64_t seq = 0;
   bool ok() const { return status == Status::ok; }
 };

@@ -14,6 +14,7 @@
 
 #include "common/clock.hpp"
 #include "vdrive/control/signal_requests.hpp"
+#include "vdrive/runtime/line_status.hpp"
 #include "vdrive/fault/impaired_link.hpp"
 #include "vdrive/network/slave_lookup.hpp"
 
@@ -107,6 +108,12 @@ ControlReply FaultService::handle(const ControlRequest& r, Nanos now) {
           reply.slave = static_cast<int>(network::find_slave(network_, {ecat::SlaveRef::Kind::address, r.station})) + 1;
         } catch (const std::invalid_argument& e) {
           return error_reply(ControlReply::Status::bad_request, e.what());
+        }
+        return reply;  // nothing changed
+      case ControlRequest::Op::line_status:
+        for (std::size_t i = 0; i < network_.size(); ++i) {
+          const runtime::SlaveStatus st = runtime::slave_status(network_, i);
+          reply.states.push_back({st.al_status, st.al_status_code, st.rx_errors});
         }
         return reply;  // nothing changed
       case ControlRequest::Op::list:

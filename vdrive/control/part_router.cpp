@@ -142,6 +142,7 @@ ControlReply PartRouter::route(const ControlRequest& r, std::string_view line) {
     case ControlRequest::Op::signals: return list_signals(r);
     case ControlRequest::Op::signal_get:
     case ControlRequest::Op::signal_set: return signal(r, line);
+    case ControlRequest::Op::line_status: return line_states(r);
   }
   return local_(r);
 }
@@ -253,6 +254,17 @@ ControlReply PartRouter::fan_out(const ControlRequest& r) {
                           : fmt::format("the other parts' active faults: {}", fmt::join(listed, ", "));
   }
   return error_reply(Status::failed, fmt::format("{}; {}", join(silent), done));
+}
+
+ControlReply PartRouter::line_states(const ControlRequest& r) {
+  ControlReply merged = local_(r);
+  if (!merged.ok()) return merged;
+  for (std::size_t k = 1; k < parts(); ++k) {
+    ControlReply there = forward(k, op_line("line_status"));
+    if (!there.ok()) return there;
+    for (const SlaveState& s : there.states) merged.states.push_back(s);
+  }
+  return merged;
 }
 
 ControlReply PartRouter::find_station(const ControlRequest& r, std::string_view line) {

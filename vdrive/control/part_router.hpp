@@ -9,8 +9,8 @@
 //   - a station address part 1 does not have is asked of the later parts in order
 //     (find_station) and the request goes to the one that has it; if none has it the error says
 //     no part of the line has it;
-//   - `clear ID` goes to the part the run-wide id names (run_fault_id.hpp); `list`, `clear_all`
-//     and `find_station` ask every part and merge the answers;
+//   - `clear ID` goes to the part the run-wide id names (run_fault_id.hpp); `list`, `clear_all`,
+//     `find_station` and `line_status` ask every part and merge the answers;
 //   - signals (a network file's, each part serving those of its slaves): `signals` asks every
 //     part and lists them in line order; a named signal, or a point at a named slave ("x.home"),
 //     is asked of part 1, then of the later parts in order, until one has it; a point at a
@@ -71,6 +71,8 @@ private:
   ControlReply clear(const ControlRequest& request);
   ControlReply fan_out(const ControlRequest& request);
   ControlReply find_station(const ControlRequest& request, std::string_view line);
+  // Every slave's AL state, part by part in line order; a part that does not answer is the error.
+  ControlReply line_states(const ControlRequest& request);
   ControlReply list_signals(const ControlRequest& request);
   ControlReply signal(const ControlRequest& request, std::string_view line);
   // A point whose slave is a whole-line position, in the part that serves it.

@@ -28,22 +28,27 @@ std::string slave_text(const SlaveStatus& s) {
 
 }  // namespace
 
+SlaveStatus slave_status(network::Network& network, std::size_t i) {
+  esc::Esc& esc = network.esc(i);
+  SlaveStatus s;
+  s.al_status = esc.peek_u16(kAlStatus);
+  s.al_status_code = esc.peek_u16(kAlStatusCode);
+  s.station = esc.peek_u16(ecat::reg::kStationAddress);
+  for (std::uint16_t a = kErrorCountersFirst; a <= kErrorCountersLast; ++a) s.rx_errors += esc.peek(a);
+  if (drive::DriveEngine* engine = network.firmware(i).drive(); engine != nullptr) {
+    s.alarm = static_cast<std::int16_t>(engine->alarms().newest_index());
+    od::ObjectStore& objects = network.firmware(i).objects();
+    if (const od::EntryDesc* e = objects.dictionary().find(kErrorCode, 0); e != nullptr && e->value_bytes >= 2) {
+      const std::span<const std::uint8_t> raw = objects.raw(*e);
+      s.error_code = static_cast<std::uint16_t>(raw[0] | raw[1] << 8);
+    }
+  }
+  return s;
+}
+
 void LineStatusPublisher::sample() {
   for (std::size_t i = 0; i < status_.slaves(); ++i) {
-    esc::Esc& esc = network_.esc(i);
-    SlaveStatus s;
-    s.al_status = esc.peek_u16(kAlStatus);
-    s.al_status_code = esc.peek_u16(kAlStatusCode);
-    s.station = esc.peek_u16(ecat::reg::kStationAddress);
-    for (std::uint16_t a = kErrorCountersFirst; a <= kErrorCountersLast; ++a) s.rx_errors += esc.peek(a);
-    if (drive::DriveEngine* engine = network_.firmware(i).drive(); engine != nullptr) {
-      s.alarm = static_cast<std::int16_t>(engine->alarms().newest_index());
-      od::ObjectStore& objects = network_.firmware(i).objects();
-      if (const od::EntryDesc* e = objects.dictionary().find(kErrorCode, 0); e != nullptr && e->value_bytes >= 2) {
-        const std::span<const std::uint8_t> raw = objects.raw(*e);
-        s.error_code = static_cast<std::uint16_t>(raw[0] | raw[1] << 8);
-      }
-    }
+    const SlaveStatus s = slave_status(network_, i);
     status_.publish(i, s);
   }
   if (wire_source_) status_.publish_wire(wire_source_());
@@ -84,6 +89,7 @@ StatusSample take_sample(const LineStatus& status, const LoopCounters& counters,
 
 std::string al_state_name(std::uint16_t al_status) {
   switch (al_status & 0x0F) {
+    case 0: return "?";  // not read: a later part of a line over processes that did not answer
     case 1: return "Init";
     case 2: return "PreOp";
     case 3: return "Boot";

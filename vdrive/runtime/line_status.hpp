@@ -89,6 +89,10 @@ private:
   std::atomic<Nanos> sampled_at_{0};
 };
 
+// Slave `i` as the status line shows it (side-effect-free peeks of its ESC, its drive's 603Fh);
+// on the loop's thread.
+SlaveStatus slave_status(network::Network& network, std::size_t i);
+
 // Reads the ESCs (side-effect-free peeks) every `period` on the loop's thread.
 class LineStatusPublisher final : public LoopService {
 public:
