@@ -31,11 +31,18 @@ WebServerOptions first_part(int later_port) {
 
 json body_of(const httplib::Result& r) { return r ? json::parse(r->body) : json{}; }
 
+// A line of three over two parts: a6b and ds5c1 in part 1, ds1000a in part 2 behind it.
+struct TwoParts {
+  WebServerOptions later = later_part();
+  WebLine part2{"127.0.0.1", {"ds1000a"}, &later};
+  WebServerOptions first = first_part(part2.server().port());
+  WebLine part1{"127.0.0.1", {"a6b", "ds5c1"}, &first};
+};
+
 TEST(PartPages, PartOnesPageShowsTheWholeLine) {
-  const WebServerOptions later = later_part();
-  WebLine part2("127.0.0.1", {"ds1000a"}, &later);
-  const WebServerOptions first = first_part(part2.server().port());
-  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, &first);
+  TwoParts parts;
+  WebLine& part1 = parts.part1;
+  WebLine& part2 = parts.part2;
   ASSERT_TRUE(part1.assign_station_addresses(0x1001));
   ASSERT_TRUE(part2.assign_station_addresses(0x1003));
   ASSERT_TRUE(eventually([&] {
@@ -62,10 +69,9 @@ TEST(PartPages, PartOnesPageShowsTheWholeLine) {
 }
 
 TEST(PartPages, ALaterSlavesRequestsGoToItsPart) {
-  const WebServerOptions later = later_part();
-  WebLine part2("127.0.0.1", {"ds1000a"}, &later);
-  const WebServerOptions first = first_part(part2.server().port());
-  WebLine part1("127.0.0.1", {"a6b", "ds5c1"}, &first);
+  TwoParts parts;
+  WebLine& part1 = parts.part1;
+  WebLine& part2 = parts.part2;
   ASSERT_TRUE(part2.assign_station_addresses(0x1003));
   ASSERT_TRUE(eventually([&] { return part1.get("/api/v1/line")["slaves"][2]["address"] == 0x1003; }));
 
