@@ -515,8 +515,6 @@ void run(RunOptions o) {
     onward_link = open_onward(o, *network);
   }
 
-
-
   // Runtime fault control: a bad-cable stage around the link (one branch while clean) and the
   // control socket, whose requests the loop picks up between frames.
   fault::WireImpairment wire(o.fault_seed);
