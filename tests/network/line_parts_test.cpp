@@ -48,5 +48,10 @@ TEST(LineParts, EachSlaveIsInExactlyOnePart) {
   EXPECT_EQ(part_of(parts, 5), 2u);  // none
 }
 
+TEST(LineParts, APartIsNamedByItsNumberAndItsSlaves) {
+  EXPECT_EQ(part_name(1, {2, 1}), "part 2 (slave 3)");
+  EXPECT_EQ(part_name(2, {3, 2}), "part 3 (slaves 4-5)");
+}
+
 }  // namespace
 }  // namespace vdrive::network

@@ -101,9 +101,7 @@ PartProcesses::~PartProcesses() {
 }
 
 std::string PartProcesses::name(std::size_t part) const {
-  const network::LinePart& p = parts_[part];
-  return p.count == 1 ? fmt::format("part {} (slave {})", part + 1, p.first + 1)
-                      : fmt::format("part {} (slaves {}-{})", part + 1, p.first + 1, p.first + p.count);
+  return network::part_name(part, parts_[part]);
 }
 
 void PartProcesses::start(std::size_t part, const std::vector<std::string>& args) {

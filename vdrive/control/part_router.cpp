@@ -15,6 +15,7 @@
 #include "vdrive/control/control_protocol.hpp"
 #include "vdrive/control/control_socket.hpp"
 #include "vdrive/control/run_fault_id.hpp"
+#include "vdrive/network/line_parts.hpp"
 #include "vdrive/fault/fault_spec.hpp"
 
 namespace vdrive::control {
@@ -117,8 +118,7 @@ PartRouter::PartRouter(std::size_t own_slaves, std::vector<RemotePart> later, Lo
 std::string PartRouter::part_name(std::size_t part) const {
   const std::size_t first = first_of(part);
   const std::size_t count = part == 0 ? own_slaves_ : later_[part - 1].count;
-  return count == 1 ? fmt::format("part {} (slave {})", part + 1, first + 1)
-                    : fmt::format("part {} (slaves {}-{})", part + 1, first + 1, first + count);
+  return network::part_name(part, {first, count});
 }
 
 std::string PartRouter::answer(std::string_view line) {

@@ -1,5 +1,7 @@
 #include "vdrive/network/line_parts.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 #include <string>
 
@@ -22,6 +24,11 @@ std::size_t part_of(std::span<const LinePart> parts, std::size_t slave) {
   for (std::size_t k = 0; k < parts.size(); ++k)
     if (slave >= parts[k].first && slave < parts[k].first + parts[k].count) return k;
   return parts.size();
+}
+
+std::string part_name(std::size_t k, LinePart p) {
+  return p.count == 1 ? fmt::format("part {} (slave {})", k + 1, p.first + 1)
+                      : fmt::format("part {} (slaves {}-{})", k + 1, p.first + 1, p.first + p.count);
 }
 
 }  // namespace vdrive::network

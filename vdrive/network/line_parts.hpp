@@ -5,6 +5,7 @@
 // larger than another.
 #include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace vdrive::network {
@@ -19,5 +20,8 @@ std::vector<LinePart> split_line(std::size_t slaves, std::size_t parts);
 
 // The part holding slave `slave` (0-based), or parts.size() if none does.
 std::size_t part_of(std::span<const LinePart> parts, std::size_t slave);
+
+// How logs and errors name part `k` (0-based) holding `p`: "part 2 (slave 3)", "part 3 (slaves 4-5)".
+std::string part_name(std::size_t k, LinePart p);
 
 }  // namespace vdrive::network

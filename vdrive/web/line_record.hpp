@@ -120,6 +120,8 @@ private:
     std::int64_t longest_ns = 0;
   };
   void push_event(Event e);
+  // The later slave at whole-line `position` (from 1), or null for one of this process's or beyond the line.
+  LaterSlave* later_at(std::size_t position);
   nlohmann::json later_slave_json(std::size_t j) const;
   nlohmann::json points_json(int slave, const std::deque<Point>& points, std::uint64_t since) const;
   nlohmann::json slave_json(std::size_t i) const;

@@ -49,12 +49,18 @@ std::string shift_stall_slaves(const std::string& text, std::size_t offset) {
 
 }  // namespace
 
+LineRecord::LaterSlave* LineRecord::later_at(std::size_t position) {
+  if (position <= slaves_.size() || position > slaves_.size() + later_.size()) return nullptr;
+  return &later_[position - slaves_.size() - 1];
+}
+
 void LineRecord::set_part_line(std::size_t first, const json& line) {
   const std::lock_guard<std::mutex> lock(mutex_);
   for (const json& s : line.at("slaves")) {
     const std::size_t position = first + s.at("position").get<std::size_t>();  // whole line, from 1
-    if (position <= slaves_.size() || position > slaves_.size() + later_.size()) continue;
-    LaterSlave& later = later_[position - slaves_.size() - 1];
+    LaterSlave* const found = later_at(position);
+    if (found == nullptr) continue;
+    LaterSlave& later = *found;
     later.view = s;
     later.view["position"] = position;
     // The part's first slave hangs on port 1 of the slave before the part, not on the master.
@@ -70,9 +76,9 @@ void LineRecord::set_part_line(std::size_t first, const json& line) {
 void LineRecord::add_part_samples(std::size_t first, const json& samples) {
   const std::lock_guard<std::mutex> lock(mutex_);
   for (const json& axis : samples.at("axes")) {
-    const std::size_t position = first + axis.at("slave").get<std::size_t>();
-    if (position <= slaves_.size() || position > slaves_.size() + later_.size()) continue;
-    std::deque<Point>& points = later_[position - slaves_.size() - 1].points;
+    LaterSlave* const later = later_at(first + axis.at("slave").get<std::size_t>());
+    if (later == nullptr) continue;
+    std::deque<Point>& points = later->points;
     const json& t = axis.at("t");
     const json &target = axis.at("target_position"), &pos = axis.at("position"), &vel = axis.at("velocity"),
                &torque = axis.at("torque"), &ferr = axis.at("following_error");
@@ -100,7 +106,7 @@ void LineRecord::add_part_events(std::size_t first, const json& events) {
 void LineRecord::set_part_silent(std::size_t first, std::size_t count, const std::string& why, Nanos time) {
   const std::lock_guard<std::mutex> lock(mutex_);
   for (std::size_t position = first + 1; position <= first + count; ++position)
-    if (position > slaves_.size() && position <= slaves_.size() + later_.size()) later_[position - slaves_.size() - 1].answers = false;
+    if (LaterSlave* const later = later_at(position); later != nullptr) later->answers = false;
   push_event({0, time, static_cast<int>(first + 1), "part_silent", 0, 0, why});
 }
 

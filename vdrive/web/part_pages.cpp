@@ -4,6 +4,7 @@
 #include <httplib.h>
 
 #include "vdrive/control/part_router.hpp"
+#include "vdrive/network/line_parts.hpp"
 #include "vdrive/web/line_record.hpp"
 
 namespace vdrive::web {
@@ -41,8 +42,7 @@ std::optional<std::size_t> PartPages::part_of(std::size_t slave) const {
 
 std::string PartPages::name(std::size_t part) const {
   const PartPage& p = parts_[part].page;
-  return p.count == 1 ? fmt::format("part {} (slave {})", part + 2, p.first + 1)
-                      : fmt::format("part {} (slaves {}-{})", part + 2, p.first + 1, p.first + p.count);
+  return network::part_name(part + 1, {p.first, p.count});  // part 1 is the caller's own
 }
 
 ApiResult PartPages::call(std::size_t part, const std::string& method, const std::string& path, const std::string& body) const {
